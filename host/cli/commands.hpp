@@ -1,0 +1,10 @@
+#pragma once
+// Every subcommand registers itself on the app; when it runs it stores its exit
+// code (exit_codes.hpp) in *result.
+#include <CLI/CLI.hpp>
+
+namespace tetrapulse::cli {
+
+void add_version_command(CLI::App& app, int* result);
+
+}  // namespace tetrapulse::cli

@@ -1,0 +1,21 @@
+#pragma once
+// Exit codes of every `tetrapulse` subcommand (documented in `tetrapulse --help`
+// and README.md). Scripts may rely on them; never renumber.
+
+namespace tetrapulse::cli {
+
+enum ExitCode : int {
+  kExitOk = 0,           // success
+  kExitFailure = 1,      // the operation ran and failed (e.g. nothing localized)
+  kExitUsage = 2,        // bad command line: unknown option, malformed value
+  kExitBadInput = 3,     // an input file or dataset is missing, unreadable or malformed
+  kExitNoDevice = 4,     // no board found, or a link (USB, CAN, serial, GPIO) cannot be opened
+  kExitDeviceError = 5,  // the board answered with an error, timed out or went away
+  kExitCheckFailed = 6,  // a check, verification or evaluation threshold did not hold
+};
+
+constexpr const char* kExitCodesHelp =
+    "Exit codes: 0 ok, 1 failure, 2 bad command line, 3 bad input file, 4 no device,\n"
+    "            5 device error or timeout, 6 check or verification failed.";
+
+}  // namespace tetrapulse::cli

@@ -1,0 +1,70 @@
+#pragma once
+// A rig dataset folder (spec/rig-dataset.md): reading it for the localizer and
+// evaluation, and writing one for the simulator and recorders.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "tetrapulse/localizer/dataset_io.hpp"
+
+namespace tetrapulse {
+
+class RigDataset {
+ public:
+  // Reads and checks camera.yaml, targets.yaml, frames.csv and (when present)
+  // groundtruth.csv. Images are read lazily by load_image().
+  static DatasetResult<RigDataset> open(const std::string& folder);
+
+  const std::string& folder() const { return folder_; }
+  const CameraInfo& camera() const { return camera_; }
+  const TargetsFile& targets() const { return targets_; }
+  const std::vector<FrameRecord>& frames() const { return frames_; }
+  const std::vector<GroundTruthRecord>& groundtruth() const { return groundtruth_; }
+  bool has_groundtruth() const { return has_groundtruth_; }
+
+  enum class ImageMode {
+    kGrey,      // 8- or 16-bit single channel; colour converted to 8-bit grey (the contract)
+    kAsStored,  // as in the file (colour kept as 8-bit BGR)
+  };
+  // Image of frames()[index]; the error names the file when it is missing,
+  // unreadable, of an unsupported type or not camera-sized.
+  DatasetResult<cv::Mat> load_image(size_t index, ImageMode mode = ImageMode::kGrey) const;
+
+  std::string path_of(const std::string& relative) const;
+
+ private:
+  std::string folder_;
+  CameraInfo camera_;
+  TargetsFile targets_;
+  std::vector<FrameRecord> frames_;
+  std::vector<GroundTruthRecord> groundtruth_;
+  bool has_groundtruth_ = false;
+};
+
+// Writes a dataset folder: images as they come, the CSV and YAML files on finish().
+class RigDatasetWriter {
+ public:
+  // Creates `folder` and `folder/frames`; fails when they cannot be created.
+  static DatasetResult<RigDatasetWriter> create(const std::string& folder, const CameraInfo& camera,
+                                                const TargetsFile& targets);
+
+  // Writes frames/NNNNNN.png (8- or 16-bit grey, or 8-bit BGR) and records the row.
+  DatasetResult<void> add_frame(int64_t frame, int64_t timestamp_ns, int64_t exposure_ns, const cv::Mat& image);
+  void add_groundtruth(const GroundTruthRecord& row) { groundtruth_.push_back(row); }
+
+  // Writes camera.yaml, targets.yaml, frames.csv and groundtruth.csv (if any rows).
+  DatasetResult<void> finish();
+
+  const std::string& folder() const { return folder_; }
+
+ private:
+  std::string folder_;
+  CameraInfo camera_;
+  TargetsFile targets_;
+  std::vector<FrameRecord> frames_;
+  std::vector<GroundTruthRecord> groundtruth_;
+};
+
+}  // namespace tetrapulse

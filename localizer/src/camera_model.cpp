@@ -1,0 +1,135 @@
+#include "tetrapulse/localizer/camera_model.hpp"
+
+#include <cmath>
+
+#include <Eigen/LU>
+
+namespace tetrapulse {
+
+const char* distortion_model_name(DistortionModel model) {
+  return model == DistortionModel::kPlumbBob ? "plumb_bob" : "equidistant";
+}
+
+namespace {
+
+// Fisheye: theta_d(theta) and its derivative.
+void fisheye_theta_d(const std::array<double, 5>& k, double theta, double* theta_d, double* dtheta_d) {
+  const double t2 = theta * theta, t4 = t2 * t2, t6 = t4 * t2, t8 = t4 * t4;
+  *theta_d = theta * (1 + k[0] * t2 + k[1] * t4 + k[2] * t6 + k[3] * t8);
+  *dtheta_d = 1 + 3 * k[0] * t2 + 5 * k[1] * t4 + 7 * k[2] * t6 + 9 * k[3] * t8;
+}
+
+}  // namespace
+
+// Distortion in normalized coordinates, for plumb_bob: (x, y) -> (x', y') and its Jacobian.
+bool CameraModel::distort(const Eigen::Vector2d& xy, Eigen::Vector2d* out, Eigen::Matrix2d* J) const {
+  const auto& d = info_.distortion;
+  const double x = xy.x(), y = xy.y();
+  const double k1 = d[0], k2 = d[1], p1 = d[2], p2 = d[3], k3 = d[4];
+  const double r2 = x * x + y * y;
+  const double radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+  (*out) << x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
+      y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
+  if (J) {
+    const double dradial_dr2 = k1 + r2 * (2 * k2 + 3 * k3 * r2);
+    const double drx = 2 * x * dradial_dr2, dry = 2 * y * dradial_dr2;
+    (*J) << radial + x * drx + 2 * p1 * y + 6 * p2 * x, x * dry + 2 * p1 * x + 2 * p2 * y,
+        y * drx + 2 * p1 * x + 2 * p2 * y, radial + y * dry + 6 * p1 * y + 2 * p2 * x;
+  }
+  return true;
+}
+
+bool CameraModel::project(const Eigen::Vector3d& p, Eigen::Vector2d* px, Eigen::Matrix<double, 2, 3>* J) const {
+  const double X = p.x(), Y = p.y(), Z = p.z();
+  if (!(Z > 0) || !std::isfinite(X) || !std::isfinite(Y)) return false;
+  Eigen::Vector2d xd;
+  Eigen::Matrix<double, 2, 3> dxd_dp;
+  if (info_.model == DistortionModel::kPlumbBob) {
+    const Eigen::Vector2d xy(X / Z, Y / Z);
+    Eigen::Matrix2d Jd;
+    distort(xy, &xd, J ? &Jd : nullptr);
+    if (J) {
+      Eigen::Matrix<double, 2, 3> dxy_dp;
+      dxy_dp << 1 / Z, 0, -X / (Z * Z), 0, 1 / Z, -Y / (Z * Z);
+      dxd_dp = Jd * dxy_dp;
+    }
+  } else {
+    const double rho = std::hypot(X, Y);
+    const double theta = std::atan2(rho, Z);
+    double td, dtd;
+    fisheye_theta_d(info_.distortion, theta, &td, &dtd);
+    if (rho < 1e-12 * Z) {
+      // On the axis theta_d/rho -> 1/Z: the model is a pinhole to first order.
+      xd << X / Z, Y / Z;
+      if (J) dxd_dp << 1 / Z, 0, -X / (Z * Z), 0, 1 / Z, -Y / (Z * Z);
+    } else {
+      const double ux = X / rho, uy = Y / rho;
+      xd << td * ux, td * uy;
+      if (J) {
+        const double q = rho * rho + Z * Z;
+        const Eigen::RowVector3d dtheta(ux * Z / q, uy * Z / q, -rho / q);
+        const double r3 = rho * rho * rho;
+        dxd_dp.row(0) = dtd * ux * dtheta + td * Eigen::RowVector3d(Y * Y / r3, -X * Y / r3, 0);
+        dxd_dp.row(1) = dtd * uy * dtheta + td * Eigen::RowVector3d(-X * Y / r3, X * X / r3, 0);
+      }
+    }
+  }
+  (*px) << info_.fx * xd.x() + info_.cx, info_.fy * xd.y() + info_.cy;
+  if (J) {
+    J->row(0) = info_.fx * dxd_dp.row(0);
+    J->row(1) = info_.fy * dxd_dp.row(1);
+  }
+  return std::isfinite(px->x()) && std::isfinite(px->y());
+}
+
+bool CameraModel::unproject(const Eigen::Vector2d& px, Eigen::Vector3d* bearing) const {
+  const Eigen::Vector2d xd((px.x() - info_.cx) / info_.fx, (px.y() - info_.cy) / info_.fy);
+  if (!xd.allFinite()) return false;
+  if (info_.model == DistortionModel::kPlumbBob) {
+    // Newton on distort(x) = xd, from the undistorted guess x = xd.
+    Eigen::Vector2d x = xd;
+    for (int it = 0; it < 30; ++it) {
+      Eigen::Vector2d f;
+      Eigen::Matrix2d Jd;
+      distort(x, &f, &Jd);
+      const Eigen::Vector2d r = f - xd;
+      if (r.norm() < 1e-15) break;
+      const double det = Jd.determinant();
+      if (std::abs(det) < 1e-12) return false;
+      x -= Jd.inverse() * r;
+    }
+    Eigen::Vector2d check;
+    distort(x, &check, nullptr);
+    if (!((check - xd).norm() < 1e-9)) return false;
+    *bearing = Eigen::Vector3d(x.x(), x.y(), 1.0).normalized();
+    return true;
+  }
+  const double rd = xd.norm();
+  if (rd < 1e-15) {
+    *bearing = Eigen::Vector3d(0, 0, 1);
+    return true;
+  }
+  // Newton on theta_d(theta) = rd; theta_d is monotonic over the lens's field of view.
+  double theta = rd;
+  for (int it = 0; it < 30; ++it) {
+    double td, dtd;
+    fisheye_theta_d(info_.distortion, theta, &td, &dtd);
+    if (!(dtd > 1e-9)) return false;
+    const double step = (td - rd) / dtd;
+    theta -= step;
+    if (std::abs(step) < 1e-15) break;
+  }
+  double td, dtd;
+  fisheye_theta_d(info_.distortion, theta, &td, &dtd);
+  if (!(std::abs(td - rd) < 1e-9) || !(theta >= 0) || !(theta < M_PI / 2)) return false;
+  const double s = std::sin(theta) / rd;
+  *bearing = Eigen::Vector3d(s * xd.x(), s * xd.y(), std::cos(theta));
+  return true;
+}
+
+bool CameraModel::in_image(const Eigen::Vector2d& px, double margin) const {
+  return px.x() >= -0.5 + margin && px.y() >= -0.5 + margin && px.x() < info_.width - 0.5 - margin &&
+         px.y() < info_.height - 0.5 - margin;
+}
+
+}  // namespace tetrapulse

@@ -1,0 +1,232 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/localizer/rig_dataset.hpp"
+
+namespace tetrapulse {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kPaperTargets = R"(timebase:
+  synchronized: true
+  epoch_ns: 0
+  bit_period_ns: 10000000
+modulation:
+  kind: two_level
+  low: 0.3
+targets:
+  - id: 1
+    name: landmark
+    marker_diameter_m: 0.03
+    markers:
+      - position_m: [0.0000, -0.1651, 0.2366]
+        code: "1101001110"
+      - position_m: [0.0000,  0.1304, 0.1845]
+        code: "1011100100"
+      - position_m: [0.0626, -0.0221, 0.0539]
+        code: "0111010011"
+      - position_m: [-0.0802, 0.0249, 0.0621]
+)";
+
+const char* kCamera = R"(image_width: 752
+image_height: 480
+camera_name: firefly
+camera_matrix:
+  rows: 3
+  cols: 3
+  data: [376.0, 0, 375.5, 0, 376.0, 239.5, 0, 0, 1]
+distortion_model: plumb_bob
+distortion_coefficients:
+  rows: 1
+  cols: 5
+  data: [-0.1, 0.01, 0, 0, 0]
+rectification_matrix:
+  rows: 3
+  cols: 3
+  data: [1, 0, 0, 0, 1, 0, 0, 0, 1]
+)";
+
+class TempDir {
+ public:
+  TempDir() : path_(fs::temp_directory_path() / ("tp_dataset_" + std::to_string(::getpid()) + "_" +
+                                                  std::to_string(counter_++))) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  std::string str() const { return path_.string(); }
+  std::string file(const std::string& name, const std::string& text) const {
+    const std::string p = (path_ / name).string();
+    std::ofstream(p) << text;
+    return p;
+  }
+
+ private:
+  static inline int counter_ = 0;
+  fs::path path_;
+};
+
+TEST(TargetsYaml, ReadsTheContractExample) {
+  auto t = parse_targets_yaml(kPaperTargets, "targets.yaml");
+  ASSERT_TRUE(t) << t.error().what();
+  EXPECT_TRUE(t->timebase.synchronized);
+  EXPECT_EQ(t->timebase.bit_period_ns, 10000000);
+  EXPECT_EQ(t->modulation.kind, ModulationKind::kTwoLevel);
+  EXPECT_DOUBLE_EQ(t->modulation.low, 0.3);
+  ASSERT_EQ(t->targets.size(), 1u);
+  EXPECT_EQ(t->targets[0].markers[0].code->str(), "1101001110");
+  EXPECT_FALSE(t->targets[0].markers[3].code.has_value());
+  EXPECT_DOUBLE_EQ(t->targets[0].markers[2].position_m.x(), 0.0626);
+}
+
+TEST(TargetsYaml, FormatRoundTripsEveryField) {
+  auto t = parse_targets_yaml(kPaperTargets, "targets.yaml");
+  ASSERT_TRUE(t);
+  t->targets[0].name = "tricky \"name\"\twith: yaml";
+  const std::string text = format_targets_yaml(*t);
+  auto back = parse_targets_yaml(text, "again.yaml");
+  ASSERT_TRUE(back) << back.error().what();
+  EXPECT_EQ(format_targets_yaml(*back), text);
+  EXPECT_EQ(back->targets[0].name, t->targets[0].name);
+}
+
+struct BadCase {
+  std::string from, to;  // textual edit of the valid file
+  int line;              // expected error line
+  std::string mentions;  // expected text in the message
+};
+
+TEST(TargetsYaml, BadFieldsAreNamedWithTheirLine) {
+  const std::vector<BadCase> cases = {
+      {"bit_period_ns: 10000000", "bit_period_ns: -5", 4, "timebase.bit_period_ns"},
+      {"bit_period_ns: 10000000", "bit_period_ns: fast", 4, "timebase.bit_period_ns"},
+      {"kind: two_level", "kind: blinky", 6, "modulation.kind"},
+      {"low: 0.3", "low: 1.5", 7, "modulation.low"},
+      {"code: \"1011100100\"", "code: \"10211\"", 17, "targets[0].markers[1].code"},
+      {"      - position_m: [-0.0802, 0.0249, 0.0621]\n", "", 11, "exactly four markers"},
+      {"[0.0626, -0.0221, 0.0539]", "[0.0626, -0.0221]", 18, "targets[0].markers[2].position_m"},
+      {"marker_diameter_m: 0.03", "marker_diameter_m: 0", 11, "marker_diameter_m"},
+      {"  epoch_ns: 0\n", "", 1, "timebase.epoch_ns"},
+      {"targets:", "targets: [", 9, "YAML syntax"},
+  };
+  for (const auto& c : cases) {
+    std::string text = kPaperTargets;
+    const size_t at = text.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from;
+    text.replace(at, c.from.size(), c.to);
+    auto t = parse_targets_yaml(text, "targets.yaml");
+    ASSERT_FALSE(t) << "accepted: " << c.to;
+    EXPECT_EQ(t.error().file, "targets.yaml");
+    EXPECT_NE(t.error().message.find(c.mentions), std::string::npos) << t.error().what();
+    EXPECT_GT(t.error().line, 0) << t.error().what();
+  }
+}
+
+TEST(CameraYaml, ReadsRosCameraInfoAndRoundTrips) {
+  auto c = parse_camera_yaml(kCamera, "camera.yaml");
+  ASSERT_TRUE(c) << c.error().what();
+  EXPECT_EQ(c->width, 752);
+  EXPECT_EQ(c->name, "firefly");
+  EXPECT_DOUBLE_EQ(c->cx, 375.5);
+  EXPECT_DOUBLE_EQ(c->distortion[0], -0.1);
+  const std::string text = format_camera_yaml(*c);
+  auto back = parse_camera_yaml(text, "again.yaml");
+  ASSERT_TRUE(back) << back.error().what();
+  EXPECT_EQ(format_camera_yaml(*back), text);
+}
+
+TEST(CameraYaml, BadFieldsAreNamed) {
+  const std::vector<std::pair<std::string, std::string>> edits = {
+      {"data: [376.0, 0, 375.5, 0, 376.0, 239.5, 0, 0, 1]", "data: [376.0, 0, 375.5, 0, 376.0, 239.5, 0, 0]"},
+      {"distortion_model: plumb_bob", "distortion_model: rational_polynomial"},
+      {"image_width: 752", "image_width: -3"},
+      {"cols: 5", "cols: 8"},
+  };
+  const std::vector<std::string> mentions = {"camera_matrix", "distortion_model", "image_width",
+                                             "distortion_coefficients"};
+  for (size_t i = 0; i < edits.size(); ++i) {
+    std::string text = kCamera;
+    text.replace(text.find(edits[i].first), edits[i].first.size(), edits[i].second);
+    auto c = parse_camera_yaml(text, "camera.yaml");
+    ASSERT_FALSE(c) << edits[i].second;
+    EXPECT_NE(c.error().message.find(mentions[i]), std::string::npos) << c.error().what();
+  }
+}
+
+TEST(FramesCsv, RejectsDuplicateAndUnsortedTimestampsNamingTheLine) {
+  TempDir dir;
+  auto dup = read_frames_csv(dir.file("a.csv", "frame,timestamp_ns,exposure_ns,file\n0,100,10,a.png\n1,100,10,b.png\n"));
+  ASSERT_FALSE(dup);
+  EXPECT_EQ(dup.error().line, 3);
+  EXPECT_NE(dup.error().message.find("duplicates"), std::string::npos);
+  auto unsorted =
+      read_frames_csv(dir.file("b.csv", "frame,timestamp_ns,exposure_ns,file\n0,100,10,a.png\n1,90,10,b.png\n"));
+  ASSERT_FALSE(unsorted);
+  EXPECT_EQ(unsorted.error().line, 3);
+  auto header = read_frames_csv(dir.file("c.csv", "frame,time,exposure_ns,file\n"));
+  ASSERT_FALSE(header);
+  EXPECT_EQ(header.error().line, 1);
+  auto fields = read_frames_csv(dir.file("d.csv", "frame,timestamp_ns,exposure_ns,file\n0,100,10\n"));
+  ASSERT_FALSE(fields);
+  EXPECT_EQ(fields.error().line, 2);
+  auto missing = read_frames_csv(dir.str() + "/nope.csv");
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.error().what().find("nope.csv"), std::string::npos);
+  auto skipped = read_frames_csv(dir.file("e.csv", "frame,timestamp_ns,exposure_ns,file\n0,100,10,a.png\n5,200,10,b.png\n"));
+  ASSERT_TRUE(skipped) << skipped.error().what();
+  EXPECT_EQ(skipped->back().frame, 5);
+}
+
+TEST(RigDataset, WriterOutputReadsBackWithEveryFieldPreserved) {
+  TempDir dir;
+  auto camera = parse_camera_yaml(kCamera, "camera.yaml");
+  auto targets = parse_targets_yaml(kPaperTargets, "targets.yaml");
+  ASSERT_TRUE(camera && targets);
+  const std::string folder = dir.str() + "/ds";
+  auto w = RigDatasetWriter::create(folder, *camera, *targets);
+  ASSERT_TRUE(w) << w.error().what();
+  cv::Mat img8(480, 752, CV_8UC1, cv::Scalar(7));
+  cv::Mat img16(480, 752, CV_16UC1, cv::Scalar(4000));
+  ASSERT_TRUE(w->add_frame(0, 1'000'000, 2'000'000, img8));
+  ASSERT_TRUE(w->add_frame(2, 21'000'000, 2'000'000, img16));
+  GroundTruthRecord g;
+  g.frame = 2;
+  g.target = 1;
+  g.pose.t = Eigen::Vector3d(0.1, -0.2, 1.3);
+  g.pose.q = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
+  w->add_groundtruth(g);
+  ASSERT_TRUE(w->finish());
+
+  auto d = RigDataset::open(folder);
+  ASSERT_TRUE(d) << d.error().what();
+  EXPECT_EQ(format_camera_yaml(d->camera()), format_camera_yaml(*camera));
+  EXPECT_EQ(format_targets_yaml(d->targets()), format_targets_yaml(*targets));
+  ASSERT_EQ(d->frames().size(), 2u);
+  EXPECT_EQ(d->frames()[1].frame, 2);
+  EXPECT_EQ(d->frames()[1].timestamp_ns, 21'000'000);
+  ASSERT_EQ(d->groundtruth().size(), 1u);
+  EXPECT_EQ(d->groundtruth()[0].pose.t, g.pose.t);
+  EXPECT_EQ(d->groundtruth()[0].pose.q.coeffs(), g.pose.q.coeffs());
+  auto a = d->load_image(0);
+  auto b = d->load_image(1);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->type(), CV_8UC1);
+  EXPECT_EQ(b->type(), CV_16UC1);
+  EXPECT_EQ(b->at<uint16_t>(10, 10), 4000);
+
+  // An image of the wrong size is refused, naming the file.
+  cv::imwrite(folder + "/frames/000002.png", cv::Mat(100, 100, CV_8UC1, cv::Scalar(0)));
+  auto wrong = d->load_image(1);
+  ASSERT_FALSE(wrong);
+  EXPECT_NE(wrong.error().what().find("000002.png"), std::string::npos);
+  EXPECT_NE(wrong.error().message.find("100x100"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tetrapulse
