@@ -24,21 +24,13 @@ bool write(const fs::path& dir, const std::string& source, const std::vector<uin
 }
 
 std::vector<VectorFile> read(const fs::path& dir) {
-  std::vector<VectorFile> files;
-  const auto paths = tetrapulse::protocol::testing::list_vector_files(dir.string());
-  if (!paths) {
-    std::fprintf(stderr, "write_fuzz_seeds: %s\n", paths.error().c_str());
-    return files;
+  auto files = tetrapulse::protocol::testing::read_vector_dir(dir.string());
+  if (!files) {
+    std::fprintf(stderr, "write_fuzz_seeds: %s
+", files.error().c_str());
+    return {};
   }
-  for (const std::string& p : *paths) {
-    auto f = tetrapulse::protocol::testing::read_vector_file(p);
-    if (!f) {
-      std::fprintf(stderr, "write_fuzz_seeds: %s\n", f.error().c_str());
-      continue;
-    }
-    files.push_back(std::move(*f));
-  }
-  return files;
+  return std::move(*files);
 }
 
 }  // namespace

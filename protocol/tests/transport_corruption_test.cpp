@@ -18,19 +18,10 @@ namespace {
 
 using Bytes = std::vector<uint8_t>;
 
-std::vector<testing::VectorFile> read_all(const std::string& part, const std::string& prefix) {
-  std::vector<testing::VectorFile> out;
-  const auto paths = testing::list_vector_files(testing::vectors_dir(part));
-  EXPECT_TRUE(paths.has_value());
-  if (!paths) return out;
-  for (const std::string& path : *paths) {
-    if (path.substr(path.find_last_of('/') + 1).rfind(prefix, 0) != 0) continue;
-    auto file = testing::read_vector_file(path);
-    EXPECT_TRUE(file.has_value()) << file.error();
-    if (file) out.push_back(std::move(*file));
-  }
-  EXPECT_FALSE(out.empty()) << part << "/" << prefix;
-  return out;
+std::vector<testing::VectorFile> read_all(const std::string& part, const std::string& prefix = "") {
+  auto files = testing::read_vector_dir(testing::vectors_dir(part), prefix);
+  EXPECT_TRUE(files.has_value()) << files.error();
+  return files ? std::move(*files) : std::vector<testing::VectorFile>{};
 }
 
 // How corrupted inputs came out.

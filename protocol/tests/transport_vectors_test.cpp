@@ -21,18 +21,10 @@ using testing::VectorFile;
 using testing::VectorRecord;
 using Bytes = std::vector<uint8_t>;
 
-std::vector<VectorFile> read_all(const std::string& part, const std::string& prefix = "") {
-  std::vector<VectorFile> out;
-  const auto paths = testing::list_vector_files(testing::vectors_dir(part));
-  EXPECT_TRUE(paths.has_value()) << paths.error();
-  if (!paths) return out;
-  for (const std::string& path : *paths) {
-    if (path.substr(path.find_last_of('/') + 1).rfind(prefix, 0) != 0) continue;
-    auto file = testing::read_vector_file(path);
-    EXPECT_TRUE(file.has_value()) << file.error();
-    if (file) out.push_back(std::move(*file));
-  }
-  return out;
+std::vector<testing::VectorFile> read_all(const std::string& part, const std::string& prefix = "") {
+  auto files = testing::read_vector_dir(testing::vectors_dir(part), prefix);
+  EXPECT_TRUE(files.has_value()) << files.error();
+  return files ? std::move(*files) : std::vector<testing::VectorFile>{};
 }
 
 ByteView view(const Bytes& b) { return ByteView{b.data(), b.size()}; }

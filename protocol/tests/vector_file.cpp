@@ -112,6 +112,21 @@ tl::expected<std::vector<std::string>, std::string> list_vector_files(const std:
   return out;
 }
 
+tl::expected<std::vector<VectorFile>, std::string> read_vector_dir(const std::string& dir,
+                                                                   const std::string& prefix) {
+  const auto paths = list_vector_files(dir);
+  if (!paths) return tl::unexpected(paths.error());
+  std::vector<VectorFile> files;
+  for (const std::string& path : *paths) {
+    if (std::filesystem::path(path).filename().string().rfind(prefix, 0) != 0) continue;
+    auto file = read_vector_file(path);
+    if (!file) return tl::unexpected(file.error());
+    files.push_back(std::move(*file));
+  }
+  if (files.empty()) return tl::unexpected(dir + ": no " + prefix + "*.txt vector files");
+  return files;
+}
+
 std::string vectors_dir(const std::string& part) {
   return std::string(TETRAPULSE_PROTOCOL_VECTORS_DIR) + "/" + part;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// Test-side reader of golden vector files (protocol/vectors/, SPEC.md §4.7, §5.7, §6.4).
+// Test-side reader of golden vector files (protocol/vectors/, SPEC.md §4.6, §5.7, §6.4).
 //
 // Lines starting with '#' are comments. Every other non-blank line is a record:
 //   [label:] token token ...
@@ -36,6 +36,11 @@ tl::expected<VectorFile, std::string> read_vector_file(const std::string& path);
 
 // Every *.txt file in `dir` (sorted), or the reason it cannot be listed.
 tl::expected<std::vector<std::string>, std::string> list_vector_files(const std::string& dir);
+
+// Every *.txt file in `dir` whose name starts with `prefix`, read; the first error
+// stops it, and finding no file is an error.
+tl::expected<std::vector<VectorFile>, std::string> read_vector_dir(const std::string& dir,
+                                                                   const std::string& prefix = "");
 
 // protocol/vectors/<part>, from the build's TETRAPULSE_PROTOCOL_VECTORS_DIR.
 std::string vectors_dir(const std::string& part);
