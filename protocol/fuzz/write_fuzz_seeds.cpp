@@ -26,8 +26,7 @@ bool write(const fs::path& dir, const std::string& source, const std::vector<uin
 std::vector<VectorFile> read(const fs::path& dir) {
   auto files = tetrapulse::protocol::testing::read_vector_dir(dir.string());
   if (!files) {
-    std::fprintf(stderr, "write_fuzz_seeds: %s
-", files.error().c_str());
+    std::fprintf(stderr, "write_fuzz_seeds: %s\n", files.error().c_str());
     return {};
   }
   return std::move(*files);
