@@ -67,6 +67,34 @@ usb_gadget_bind() {
   ls /sys/class/udc | head -1 >"/sys/kernel/config/usb_gadget/$1/UDC"
 }
 
+# usb_gadget_start NAME VID PID LOG READY PROGRAM [ARG...]: the whole bring-up.
+# Creates the gadget (usb_gadget_ffs), starts PROGRAM in the background with
+# its output in LOG, waits until LOG shows READY (the program has written its
+# descriptors to ep0), binds, and waits until the host side enumerates VID:PID.
+# Returns 1 when a step does not happen within 20 s; LOG then tells why.
+usb_gadget_start() {
+  gadget_name=$1 gadget_vid=${2#0x} gadget_pid=${3#0x} gadget_log=$4 gadget_ready=$5
+  shift 5
+  usb_gadget_ffs "$gadget_name" "0x$gadget_vid" "0x$gadget_pid" || return 1
+  "$@" >"$gadget_log" 2>&1 &
+  echo "$!" >"/run/usb-gadget-$gadget_name.pid"
+  wait_for 20 sh -c "grep -q '$gadget_ready' '$gadget_log' || ! kill -0 $!" || :
+  grep -q "$gadget_ready" "$gadget_log" || return 1
+  usb_gadget_bind "$gadget_name" || return 1
+  wait_for 20 lsusb -d "$gadget_vid:$gadget_pid"
+}
+
+# usb_gadget_stop NAME: ends the program usb_gadget_start started and removes
+# the gadget. Safe under set -e, for EXIT traps.
+usb_gadget_stop() {
+  if [ -f "/run/usb-gadget-$1.pid" ]; then
+    kill "$(cat "/run/usb-gadget-$1.pid")" 2>/dev/null || :
+    wait "$(cat "/run/usb-gadget-$1.pid")" 2>/dev/null || :
+    rm -f "/run/usb-gadget-$1.pid"
+  fi
+  usb_gadget_remove "$1"
+}
+
 # usb_gadget_remove NAME: unbinds and deletes the gadget, so another test can
 # bind. Stop the program holding ep0 first. Safe under set -e, for EXIT traps.
 usb_gadget_remove() {

@@ -30,7 +30,8 @@ in=$(gpio_sim_line_dir selftest 0)
 echo pull-down >"$in/pull"
 gpiomon --num-events=2 --format='%e %o %s %n' "$chip" 0 >/tmp/gpiomon.txt 2>&1 &
 monitor=$!
-sleep 1 # the monitor needs about a second to start under TCG
+# gpiomon starts slowly under TCG; edges count once it has requested the line.
+wait_for 10 sh -c "gpioinfo $chip | grep -q -E 'line +0:.*\"gpiomon\"'" || fail "gpiomon did not request line 0 within 10 s"
 read -r up_mono _ </proc/uptime
 up_real=$(date +%s)
 echo pull-up >"$in/pull"
