@@ -8,19 +8,21 @@ VM_MODULES=(vcan can-raw configfs gpio-sim dummy_hcd libcomposite usb_f_fs)
 # Stock programs the tests drive.
 VM_TOOLS=(candump cansend gpioset gpioget gpiomon gpiodetect gpioinfo gpiofind lsusb dfu-util)
 
-# vm_stage_program STAGE PATH DIR: copies the program PATH into STAGE/DIR and
-# the shared libraries ldd names into the same paths under STAGE.
-vm_stage_program() {
-  local stage=$1 program=$2 dir=$3 libs lib
-  [ -f "$program" ] && [ -x "$program" ] || vm_die "program '$program' does not exist or is not executable"
+# vm_stage_programs STAGE DIR PROGRAM...: copies the programs into STAGE/DIR
+# and the shared libraries ldd names into the same paths under STAGE.
+vm_stage_programs() {
+  local stage=$1 dir=$2 program libs lib
+  shift 2
   mkdir -p "$stage/$dir"
-  cp -L "$program" "$stage/$dir/"
-  libs=$(ldd "$program" 2>&1) || true
+  for program in "$@"; do
+    [ -f "$program" ] && [ -x "$program" ] || vm_die "program '$program' does not exist or is not executable"
+    cp -L "$program" "$stage/$dir/"
+  done
+  libs=$(ldd "$@" 2>&1) || true
   if grep -q 'not found' <<<"$libs"; then
-    vm_die "program '$program' needs libraries this machine lacks: $(grep 'not found' <<<"$libs" | tr -s ' \t\n' ' ')"
+    vm_die "programs need libraries this machine lacks: $(grep -e 'not found' -e '^/' <<<"$libs" | tr -s ' \t\n' ' ')"
   fi
-  for lib in $(awk '/=> \// { print $3 } /^[[:space:]]*\/[^ ]+ \(/ { print $1 }' <<<"$libs"); do
-    [ -e "$stage$lib" ] && continue
+  for lib in $(awk '/=> \// { print $3 } /^[[:space:]]+\/[^ ]+ \(/ { print $1 }' <<<"$libs" | sort -u); do
     mkdir -p "$stage$(dirname "$lib")"
     cp -L "$lib" "$stage$lib"
   done
@@ -99,7 +101,7 @@ vm_stage_modules() {
 
 # vm_stage_base STAGE KERNEL_DIR RELEASE HERE MODULE...: everything every boot needs.
 vm_stage_base() {
-  local stage=$1 kdir=$2 release=$3 here=$4 busybox applet tool path
+  local stage=$1 kdir=$2 release=$3 here=$4 busybox tool path tools=()
   shift 4
   busybox=$(command -v busybox) || vm_unavailable "busybox is not installed (Debian package busybox-static)"
   if ldd "$busybox" >/dev/null 2>&1; then
@@ -107,19 +109,45 @@ vm_stage_base() {
   fi
   mkdir -p "$stage"/{bin,sbin,usr/bin,usr/sbin,usr/local/bin,etc/tetrapulse,lib/tetrapulse,proc,sys,dev,tmp,run,tests}
   cp "$busybox" "$stage/bin/busybox"
-  for applet in $("$busybox" --list-full); do
-    [ -e "$stage/$applet" ] || ln -s /bin/busybox "$stage/$applet"
-  done
+  # /init's interpreter; /init links the other applets (one process, not 300 ln).
+  ln -s busybox "$stage/bin/sh"
   for tool in "${VM_TOOLS[@]}"; do
     path=$(command -v "$tool") || vm_die "'$tool' is not installed (scripts/packages.txt lists its package)"
-    rm -f "$stage/usr/bin/$tool"
-    vm_stage_program "$stage" "$path" usr/bin
+    tools+=("$path")
   done
+  vm_stage_programs "$stage" usr/bin "${tools[@]}"
   vm_stage_modules "$stage" "$kdir/root" "$release" "$@"
   printf '%s\n' "$@" >"$stage/etc/tetrapulse/modules"
   cp "$here/guest/init" "$stage/init"
   cp "$here/guest/vm-lib.sh" "$stage/lib/tetrapulse/vm-lib.sh"
   chmod 0755 "$stage/init"
+}
+
+# vm_base_initramfs CACHE KERNEL_DIR RELEASE HERE MODULE...: prints the path of
+# the packed base initramfs (vm_stage_base), built once for each kernel, module
+# list, set of tool binaries and version of the guest files.
+vm_base_initramfs() {
+  local cache=$1 kdir=$2 release=$3 here=$4 key tool out tmp
+  shift 4
+  key=$({
+    echo "$release $(cat "$kdir/version") $*"
+    cat "$here/guest/init" "$here/guest/vm-lib.sh" "$here/lib/initramfs.sh"
+    for tool in busybox "${VM_TOOLS[@]}"; do
+      stat -L -c '%n %s %Y' "$(command -v "$tool")" 2>/dev/null || echo "missing $tool"
+    done
+  } | sha256sum | cut -c1-16)
+  out=$cache/initramfs/base-$key.cpio.gz
+  if [ ! -f "$out" ]; then
+    mkdir -p "$cache/initramfs"
+    tmp=$(mktemp -d "$cache/initramfs/stage.XXXXXX")
+    vm_stage_base "$tmp/root" "$kdir" "$release" "$here" "$@"
+    vm_pack "$tmp/root" "$tmp/base.cpio.gz"
+    mv -f "$tmp/base.cpio.gz" "$out"
+    rm -rf "$tmp"
+    find "$cache/initramfs" -name 'base-*.cpio.gz' -mtime +7 -delete
+  fi
+  touch "$out"
+  echo "$out"
 }
 
 # vm_pack STAGE OUT: a gzip'd newc cpio of STAGE, owned by root.
