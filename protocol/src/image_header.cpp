@@ -62,7 +62,9 @@ Result<ImageHeader> decode_image_header(ByteView image) {
   h.payload_crc32c = r.u32();
   h.flags = r.u32();
   bool reserved_zero = true;
-  for (size_t i = kReservedBegin; i < kCrcOffset; ++i) reserved_zero = reserved_zero && r.u8() == 0;
+  for (size_t i = kReservedBegin; i < kCrcOffset; ++i) {
+    if (r.u8() != 0) reserved_zero = false;
+  }
   const uint32_t header_crc = r.u32();
   if (header_crc != crc32c(image.data, kCrcOffset)) return Error::kBadCrc;
   if (!reserved_zero) return Error::kBadValue;

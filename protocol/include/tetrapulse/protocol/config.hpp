@@ -1,6 +1,6 @@
 #pragma once
 // The board configuration: what SetConfig carries, ConfigReport returns and flash stores
-// (SPEC.md §2.4). Times are integer nanoseconds of rig time.
+// (SPEC.md §2.5). Times are integer nanoseconds of rig time.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -86,13 +86,13 @@ struct Config {
   }
 };
 
-// Encoded size of a Config (SPEC.md §2.4).
+// Encoded size of a Config (SPEC.md §2.5).
 constexpr size_t kConfigSize = 73;
 
 // The configuration of a board fresh from the factory (or after FactoryReset).
 constexpr Config default_config() { return Config{}; }
 
-// kBadValue when a field is outside its range (SPEC.md §2.4); used by encode and decode.
+// kBadValue when a field is outside its range (SPEC.md §2.5); used by encode and decode.
 Status validate(const Config& config);
 
 // The Config on its own (flash records): validated, then kConfigSize bytes appended.

@@ -1,5 +1,5 @@
 #pragma once
-// Requests, host -> board (SPEC.md §2.2). Field order is wire order; fields(io, m)
+// Requests, host -> board (SPEC.md §2.3). Field order is wire order; fields(io, m)
 // lists them once for the encoder, the decoder and the formatter.
 #include <array>
 #include <cstdint>

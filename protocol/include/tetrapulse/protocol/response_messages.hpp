@@ -1,5 +1,5 @@
 #pragma once
-// Responses, board -> host (SPEC.md §2.5). Field order is wire order.
+// Responses, board -> host (SPEC.md §2.6). Field order is wire order.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -11,7 +11,7 @@
 
 namespace tetrapulse::protocol {
 
-// Success of a request without data of its own; `value` per request (SPEC.md §2.5).
+// Success of a request without data of its own; `value` per request (SPEC.md §2.6).
 struct Ack {
   static constexpr MessageType kType = MessageType::kAck;
   MessageType request_type = MessageType::kGetInfo;  // a defined request type

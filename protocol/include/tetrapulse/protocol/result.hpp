@@ -8,7 +8,7 @@
 namespace tetrapulse::protocol {
 
 // Every way a protocol operation can fail. The numeric values are wire values
-// (they travel in ErrorResponse, SPEC.md §Errors): never renumber, only append.
+// (they travel in ErrorResponse, SPEC.md §3): never renumber, only append.
 enum class Error : uint8_t {
   kNone = 0,
   // Decoding

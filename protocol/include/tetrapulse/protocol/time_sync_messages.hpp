@@ -1,5 +1,5 @@
 #pragma once
-// Two-step time sync, broadcast by the sync master and never answered (SPEC.md §2.3).
+// Two-step time sync, broadcast by the sync master and never answered (SPEC.md §2.4).
 // A board time-stamps Sync on reception; FollowUp then says when the master sent it.
 #include <cstdint>
 
