@@ -8,7 +8,7 @@
 namespace tetrapulse::protocol {
 
 // Every way a protocol operation can fail. The numeric values are wire values
-// (they travel in ErrorResponse, SPEC.md §Errors): never renumber, only append.
+// (they travel in ErrorResponse, SPEC.md §3): never renumber, only append.
 enum class Error : uint8_t {
   kNone = 0,
   // Decoding
@@ -57,10 +57,9 @@ class Result {
   bool ok() const { return ok_; }
   explicit operator bool() const { return ok_; }
   Error error() const { return ok_ ? Error::kNone : error_; }
-  // Through void*: storage_ is aligned for T, but -Wcast-align (strict-alignment
-  // targets such as Cortex-M) cannot see that through a reinterpret_cast.
-  const T& value() const { return *std::launder(static_cast<const T*>(static_cast<const void*>(&storage_))); }
-  T& value() { return *std::launder(static_cast<T*>(static_cast<void*>(&storage_))); }
+  // Through void*: a direct cast from the byte array trips -Wcast-align on Cortex-M.
+  const T& value() const { return *std::launder(static_cast<const T*>(static_cast<const void*>(storage_))); }
+  T& value() { return *std::launder(static_cast<T*>(static_cast<void*>(storage_))); }
   const T& operator*() const { return value(); }
   T& operator*() { return value(); }
   const T* operator->() const { return &value(); }
