@@ -57,8 +57,9 @@ class Result {
   bool ok() const { return ok_; }
   explicit operator bool() const { return ok_; }
   Error error() const { return ok_ ? Error::kNone : error_; }
-  const T& value() const { return *std::launder(reinterpret_cast<const T*>(&storage_)); }
-  T& value() { return *std::launder(reinterpret_cast<T*>(&storage_)); }
+  // Through void*: storage_ is aligned for T, which -Wcast-align cannot see on Cortex-M.
+  const T& value() const { return *std::launder(static_cast<const T*>(static_cast<const void*>(&storage_))); }
+  T& value() { return *std::launder(static_cast<T*>(static_cast<void*>(&storage_))); }
   const T& operator*() const { return value(); }
   T& operator*() { return value(); }
   const T* operator->() const { return &value(); }
