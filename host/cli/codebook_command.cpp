@@ -104,25 +104,26 @@ tl::expected<uint8_t, Usage> parse_run(const std::string& option, const std::str
   return static_cast<uint8_t>(*k);
 }
 
-// The spec for a mode: defaults, then the options given.
+protocol::ZeroBit zero_bit(ModulationKind modulation) {
+  return modulation == ModulationKind::kOnOff ? protocol::ZeroBit::kDark : protocol::ZeroBit::kDim;
+}
+
+// The spec for a mode: the recommended one (SPEC.md §8.4), then the options given.
 tl::expected<CodebookSpec, Usage> make_spec(const ConstraintArgs& a, CodeTiming timing, ModulationKind modulation,
                                             std::optional<int> file_length) {
-  const bool free = timing == CodeTiming::kFreeRunning;
-  CodebookSpec s;
-  s.timing = timing;
-  const int L = a.length ? *a.length : file_length ? *file_length : free ? 15 : 12;
-  s.length = static_cast<uint8_t>(L);
-  s.min_distance = static_cast<uint8_t>(a.distance ? *a.distance : 3);
-  if (s.min_distance > L) {
-    return tl::unexpected(Usage{fmt::format("--distance: {} exceeds the code length {}", s.min_distance, L)});
+  const int given_length = a.length ? *a.length : file_length ? *file_length : 0;
+  CodebookSpec s = protocol::recommended_spec(timing, zero_bit(modulation), static_cast<uint8_t>(given_length));
+  const int L = s.length;
+  if (a.distance) {
+    if (*a.distance > L) {
+      return tl::unexpected(Usage{fmt::format("--distance: {} exceeds the code length {}", *a.distance, L)});
+    }
+    s.min_distance = static_cast<uint8_t>(*a.distance);
   }
-  if (a.weights.empty()) {
-    s.min_weight = static_cast<uint8_t>(free ? 0 : (4 * L + 5) / 10);
-    s.max_weight = static_cast<uint8_t>(free ? L : (6 * L + 5) / 10);
-  } else if (a.weights == "any") {
+  if (a.weights == "any") {
     s.min_weight = 0;
     s.max_weight = static_cast<uint8_t>(L);
-  } else {
+  } else if (!a.weights.empty()) {
     const size_t dash = a.weights.find('-');
     const std::optional<int> lo = dash == std::string::npos ? std::nullopt : parse_int(a.weights.substr(0, dash));
     const std::optional<int> hi = dash == std::string::npos ? std::nullopt : parse_int(a.weights.substr(dash + 1));
@@ -133,10 +134,9 @@ tl::expected<CodebookSpec, Usage> make_spec(const ConstraintArgs& a, CodeTiming 
     s.min_weight = static_cast<uint8_t>(*lo);
     s.max_weight = static_cast<uint8_t>(*hi);
   }
-  const uint8_t zero_default = modulation == ModulationKind::kOnOff ? (free ? 3 : 2) : kNoRunLimit;
-  auto zeros = parse_run("--max-zero-run", a.max_zero_run, zero_default, L);
+  auto zeros = parse_run("--max-zero-run", a.max_zero_run, s.max_zero_run, L);
   if (!zeros) return tl::unexpected(zeros.error());
-  auto ones = parse_run("--max-one-run", a.max_one_run, kNoRunLimit, L);
+  auto ones = parse_run("--max-one-run", a.max_one_run, s.max_one_run, L);
   if (!ones) return tl::unexpected(ones.error());
   s.max_zero_run = *zeros;
   s.max_one_run = *ones;
@@ -169,16 +169,17 @@ std::vector<uint64_t> search_codes(const CodebookSpec& spec, protocol::CodebookW
 }
 
 // Which single relaxation of the spec reaches the count: one hint per constraint.
-std::string relaxation_hints(const CodebookSpec& spec, const ConstraintArgs& given, bool per_marker, size_t targets,
-                             size_t found, protocol::CodebookWorkspace& ws) {
+std::string relaxation_hints(const CodebookSpec& spec, const ConstraintArgs& given, ModulationKind modulation,
+                             bool per_marker, size_t targets, size_t found, protocol::CodebookWorkspace& ws) {
   std::vector<std::string> hints;
   auto reaches = [&](CodebookSpec s) { return search_codes(s, ws).size() >= s.count; };
   for (int extra = 1; extra <= 12 && spec.length + extra <= 64; ++extra) {
     CodebookSpec s = spec;
     s.length = static_cast<uint8_t>(spec.length + extra);
-    if (given.weights.empty() && s.timing == CodeTiming::kSynchronized) {
-      s.min_weight = static_cast<uint8_t>((4 * s.length + 5) / 10);
-      s.max_weight = static_cast<uint8_t>((6 * s.length + 5) / 10);
+    if (given.weights.empty()) {  // the recommended weights grow with the length
+      const CodebookSpec r = protocol::recommended_spec(spec.timing, zero_bit(modulation), s.length);
+      s.min_weight = r.min_weight;
+      s.max_weight = r.max_weight;
     } else if (s.max_weight == spec.length) {
       s.max_weight = s.length;
     }
@@ -301,7 +302,7 @@ int run_generate(const GenerateArgs& a) {
   if (codes.size() < spec->count) {
     fail_line(fmt::format("found only {} of the {} codes that {} targets need ({}); {}", codes.size(), spec->count,
                           targets, describe(*spec),
-                          relaxation_hints(*spec, a.constraints, per_marker, targets, codes.size(), *ws)));
+                          relaxation_hints(*spec, a.constraints, modulation, per_marker, targets, codes.size(), *ws)));
     return kExitCheckFailed;
   }
 

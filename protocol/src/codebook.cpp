@@ -48,6 +48,20 @@ Result<size_t> search(const CodebookSpec& spec, uint32_t target, size_t limit, u
 
 }  // namespace
 
+CodebookSpec recommended_spec(CodeTiming timing, ZeroBit zero, uint8_t length) {
+  const bool free = timing == CodeTiming::kFreeRunning;
+  CodebookSpec s;
+  s.timing = timing;
+  s.length = length > 0 ? length : free ? 15 : 12;
+  s.min_distance = s.length < 3 ? s.length : 3;
+  // Balanced codes keep every marker about equally bright on average.
+  s.min_weight = static_cast<uint8_t>(free ? 0 : (4 * s.length + 5) / 10);
+  s.max_weight = static_cast<uint8_t>(free ? s.length : (6 * s.length + 5) / 10);
+  s.max_zero_run = zero == ZeroBit::kDark ? (free ? 3 : 2) : kNoRunLimit;
+  s.max_one_run = kNoRunLimit;
+  return s;
+}
+
 Result<size_t> generate(const CodebookSpec& spec, uint64_t* out, size_t capacity, CodebookWorkspace& workspace,
                         CodebookSearchStats* stats) {
   if (capacity < spec.count) return Error::kBufferTooSmall;

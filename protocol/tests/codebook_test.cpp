@@ -65,6 +65,34 @@ std::string describe(const CodebookReport& r) {
          " limit " + std::to_string(r.limit) + " " + r.detail;
 }
 
+// The recommended specs are the acceptance specs, and valid for every length.
+TEST(Codebook, RecommendedSpecsMeetTheAcceptanceSpecs) {
+  for (const CodebookSpec& want : {synchronized_l12(), free_running_l15()}) {
+    const CodebookSpec got = recommended_spec(want.timing, ZeroBit::kDark);
+    EXPECT_EQ(got.length, want.length);
+    EXPECT_EQ(got.min_distance, want.min_distance);
+    EXPECT_EQ(got.max_zero_run, want.max_zero_run);
+    EXPECT_EQ(got.max_one_run, want.max_one_run);
+    if (want.timing == CodeTiming::kSynchronized) {
+      EXPECT_EQ(got.min_weight, want.min_weight);
+      EXPECT_EQ(got.max_weight, want.max_weight);
+    } else {
+      EXPECT_EQ(got.min_weight, 0);
+      EXPECT_GE(got.max_weight, got.length);
+    }
+  }
+  for (uint8_t L = 1; L <= 64; ++L) {
+    for (CodeTiming timing : {CodeTiming::kSynchronized, CodeTiming::kFreeRunning}) {
+      for (ZeroBit zero : {ZeroBit::kDark, ZeroBit::kDim}) {
+        const CodebookSpec s = recommended_spec(timing, zero, L);
+        EXPECT_EQ(s.length, L);
+        EXPECT_TRUE(check_spec(s).ok()) << int(L) << " " << check_spec(s).detail;
+        EXPECT_EQ(s.max_zero_run == kNoRunLimit, zero == ZeroBit::kDim);
+      }
+    }
+  }
+}
+
 TEST(Codebook, SynchronizedTwelveBitsGivesSixtyFourCodes) {
   const CodebookSpec spec = synchronized_l12();
   const std::vector<uint64_t> codes = generated(spec);

@@ -27,6 +27,16 @@ uint32_t differing(const std::string& a, const std::string& b) {
   return d;
 }
 
+// min over k = first..L-1 of differing(a, rotated(b, k)), with the first k reaching it.
+ShiftDistance fewest_differences_over_shifts(const std::string& a, const std::string& b, uint32_t first) {
+  ShiftDistance best{static_cast<uint32_t>(a.size()) + 1, 0};
+  for (uint32_t k = first; k < a.size(); ++k) {
+    const uint32_t d = differing(a, rotated(b, k));
+    if (d < best.distance) best = ShiftDistance{d, k};
+  }
+  return best;
+}
+
 uint32_t longest_cyclic_run(const std::string& s, char c) {
   if (std::count(s.begin(), s.end(), c) == static_cast<long>(s.size())) return static_cast<uint32_t>(s.size());
   const std::string twice = s + s;
@@ -84,20 +94,14 @@ RC_GTEST_PROP(CodebookWord, CyclicDistanceIsTheMinimumOverShifts, ()) {
         return rotate_word(a.bits, static_cast<uint32_t>(x % a.length), a.length) ^
                (uint64_t{1} << ((x >> 8) % a.length));
       }));
-  const std::string sa = text(a.bits, a.length), sb = text(b, a.length);
-  uint32_t best = a.length + 1, best_shift = 0;
-  for (uint32_t k = 0; k < a.length; ++k) {
-    const uint32_t d = differing(sa, rotated(sb, k));
-    if (d < best) {
-      best = d;
-      best_shift = k;
-    }
-  }
+  const ShiftDistance want = fewest_differences_over_shifts(text(a.bits, a.length), text(b, a.length), 0);
   const ShiftDistance got = cyclic_distance(a.bits, b, a.length);
-  RC_ASSERT(got.distance == best);
-  RC_ASSERT(got.shift == best_shift);
-  for (uint32_t d = 1; d <= a.length; ++d) RC_ASSERT(cyclically_closer_than(a.bits, b, a.length, d) == (best < d));
-  RC_ASSERT(cyclic_distance(b, a.bits, a.length).distance == best);  // symmetric
+  RC_ASSERT(got.distance == want.distance);
+  RC_ASSERT(got.shift == want.shift);
+  for (uint32_t d = 1; d <= a.length; ++d) {
+    RC_ASSERT(cyclically_closer_than(a.bits, b, a.length, d) == (want.distance < d));
+  }
+  RC_ASSERT(cyclic_distance(b, a.bits, a.length).distance == want.distance);  // symmetric
 }
 
 RC_GTEST_PROP(CodebookWord, SelfShiftDistanceIsTheMinimumOverNonTrivialShifts, ()) {
@@ -109,16 +113,9 @@ RC_GTEST_PROP(CodebookWord, SelfShiftDistanceIsTheMinimumOverNonTrivialShifts, (
     RC_ASSERT(got.distance == 1u);
     return;
   }
-  uint32_t best = w.length + 1, best_shift = 0;
-  for (uint32_t k = 1; k < w.length; ++k) {
-    const uint32_t d = differing(s, rotated(s, k));
-    if (d < best) {
-      best = d;
-      best_shift = k;
-    }
-  }
-  RC_ASSERT(got.distance == best);
-  RC_ASSERT(got.shift == best_shift);
+  const ShiftDistance want = fewest_differences_over_shifts(s, s, 1);
+  RC_ASSERT(got.distance == want.distance);
+  RC_ASSERT(got.shift == want.shift);
 }
 
 RC_GTEST_PROP(CodebookWord, StringOrderKeyOrdersLikeTheStrings, ()) {

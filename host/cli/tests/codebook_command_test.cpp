@@ -65,17 +65,6 @@ CommandRun codebook(const TempDir& dir, const std::vector<std::string>& args) {
 
 size_t lines(const std::string& text) { return static_cast<size_t>(std::count(text.begin(), text.end(), '\n')); }
 
-// The generator's defaults for synchronized on_off boards (SPEC.md §8).
-protocol::CodebookSpec synchronized_defaults() {
-  protocol::CodebookSpec s;
-  s.length = 12;
-  s.min_distance = 3;
-  s.min_weight = 5;
-  s.max_weight = 7;
-  s.max_zero_run = 2;
-  return s;
-}
-
 std::vector<uint64_t> marker_codes(const TargetsFile& f) {
   std::vector<uint64_t> codes;
   for (const Target& t : f.targets) {
@@ -104,7 +93,9 @@ TEST(CodebookCommand, WritesSixteenTargetsWithACodePerMarker) {
   }
   const std::vector<uint64_t> codes = marker_codes(*file);
   ASSERT_EQ(codes.size(), 64u);
-  const protocol::CodebookReport report = protocol::validate(synchronized_defaults(), codes.data(), codes.size());
+  const protocol::CodebookSpec defaults =
+      protocol::recommended_spec(protocol::CodeTiming::kSynchronized, protocol::ZeroBit::kDark);
+  const protocol::CodebookReport report = protocol::validate(defaults, codes.data(), codes.size());
   EXPECT_TRUE(report.ok()) << protocol::codebook_fault_name(report.fault) << " " << report.code << " "
                            << report.other;
 
@@ -136,10 +127,8 @@ TEST(CodebookCommand, FreeRunningTwoLevelWithACodePerTarget) {
     }
     codes.push_back(t.markers[0].code->bits);
   }
-  protocol::CodebookSpec spec;
-  spec.timing = protocol::CodeTiming::kFreeRunning;
-  spec.length = 15;
-  spec.min_distance = 3;
+  const protocol::CodebookSpec spec =
+      protocol::recommended_spec(protocol::CodeTiming::kFreeRunning, protocol::ZeroBit::kDim);
   EXPECT_TRUE(protocol::validate(spec, codes.data(), codes.size()).ok());
   const CommandRun check = codebook(dir, {"check", out});
   EXPECT_EQ(check.exit, kExitOk) << check.err;

@@ -50,6 +50,19 @@ struct CodebookSpec {
   uint32_t search_iterations = 20000;  // local-search budget (SPEC.md §8)
 };
 
+// What a 0 bit does to an LED (targets.yaml modulation.kind on_off / two_level).
+enum class ZeroBit : uint8_t {
+  kDark = 0,  // on_off: the marker must stay visible often enough to be tracked
+  kDim = 1,   // two_level: always visible
+};
+
+// The recommended spec (SPEC.md §8.4) for a timing and modulation; length 0
+// picks the recommended length (12 synchronized, 15 free-running). d = 3;
+// weights round(0.4 L)..round(0.6 L) synchronized, any free-running; longest
+// zero run 2 (synchronized) or 3 (free-running) when a 0 bit is dark, else no
+// bound; no bound on runs of ones. Count, seed and budget keep their defaults.
+CodebookSpec recommended_spec(CodeTiming timing, ZeroBit zero, uint8_t length = 0);
+
 // What a check found wrong. Faults about one code fill `code`; pair faults fill
 // `code` < `other` and the `shift` at which `other` comes closest.
 enum class CodebookFault : uint8_t {
