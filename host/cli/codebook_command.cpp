@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
@@ -294,7 +295,7 @@ int run_generate(const GenerateArgs& a) {
   }
   if (ids.size() != targets || std::set<int>(ids.begin(), ids.end()).size() != targets ||
       *std::min_element(ids.begin(), ids.end()) < 0) {
-    fail_line(fmt::format("--ids: need {} distinct non-negative ids, got {}", targets, ids.size()));
+    fail_line(fmt::format("--ids: need {} distinct non-negative ids, got '{}'", targets, fmt::join(ids, ",")));
     return kExitUsage;
   }
 
