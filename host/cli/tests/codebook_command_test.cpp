@@ -107,8 +107,8 @@ TEST(CodebookCommand, WritesSixteenTargetsWithACodePerMarker) {
 TEST(CodebookCommand, FreeRunningTwoLevelWithACodePerTarget) {
   TempDir dir;
   const std::string out = dir.path("targets.yaml");
-  const CommandRun r = codebook(dir, {"--targets", "5", "--per", "target", "--free-running", "--modulation", "two_level",
-                               "--low", "0.25", "--ids", "10,11,12,13,14", "--out", out});
+  const CommandRun r = codebook(dir, {"--targets", "5", "--per", "target", "--free-running", "--modulation",
+                                      "two_level", "--low", "0.25", "--ids", "10,11,12,13,14", "--out", out});
   ASSERT_EQ(r.exit, kExitOk) << r.err;
   auto file = read_targets_yaml(out);
   ASSERT_TRUE(file) << file.error().what();
@@ -146,7 +146,8 @@ TEST(CodebookCommand, SameSeedSameFileOtherSeedOtherCodes) {
 
 TEST(CodebookCommand, UsesEachTargetOfAGeometryWithNTargets) {
   TempDir dir;
-  const std::string geometry = dir.file("geometry.yaml", R"(timebase: {synchronized: true, epoch_ns: 0, bit_period_ns: 5000000}
+  const std::string geometry = dir.file("geometry.yaml", R"(
+timebase: {synchronized: true, epoch_ns: 0, bit_period_ns: 5000000}
 modulation: {kind: constant}
 targets:
   - id: 7
@@ -287,7 +288,8 @@ TEST(CodebookCommand, CheckOfFreeRunningCodesNamesTheShift) {
 
 TEST(CodebookCommand, CheckRejectsMissingCodesAndUnreadableFiles) {
   TempDir dir;
-  const std::string plain = dir.file("plain.yaml", slurp(TETRAPULSE_SOURCE_DIR "/hardware/targets/paper-half-active.yaml"));
+  const std::string plain =
+      dir.file("plain.yaml", slurp(TETRAPULSE_SOURCE_DIR "/hardware/targets/paper-half-active.yaml"));
   const CommandRun constant = codebook(dir, {"check", plain});
   EXPECT_EQ(constant.exit, kExitCheckFailed);
   EXPECT_NE(constant.err.find("constant"), std::string::npos) << constant.err;
