@@ -1,0 +1,79 @@
+#include "tetrapulse/localizer/testing/target_views.hpp"
+
+#include <stdexcept>
+
+#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/localizer/testing/p3p_problems.hpp"
+
+namespace tetrapulse::testing {
+
+CameraInfo wide_plumb_bob_camera() {
+  CameraInfo c;
+  c.name = "wide_plumb_bob";
+  c.width = 752;
+  c.height = 480;
+  c.fx = 376.0;
+  c.fy = 376.5;
+  c.cx = 375.6;
+  c.cy = 240.3;
+  c.model = DistortionModel::kPlumbBob;
+  c.distortion = {-0.2, 0.05, 0.0011, -0.0007, 0.0};  // monotonic over the whole sensor
+  return c;
+}
+
+CameraInfo fisheye_camera() {
+  CameraInfo c;
+  c.name = "fisheye";
+  c.width = 752;
+  c.height = 480;
+  c.fx = 210.0;
+  c.fy = 210.4;
+  c.cx = 376.2;
+  c.cy = 239.4;
+  c.model = DistortionModel::kEquidistant;
+  c.distortion = {0.02, -0.01, 0.003, -0.0005, 0};
+  return c;
+}
+
+Target hardware_target(const std::string& file) {
+  const std::string path = std::string(TETRAPULSE_SOURCE_DIR) + "/hardware/targets/" + file;
+  const auto targets = read_targets_yaml(path);
+  if (!targets || targets->targets.empty()) {
+    throw std::runtime_error(targets ? path + ": no target" : targets.error().what());
+  }
+  return targets->targets.front();
+}
+
+Pose random_visible_pose(std::mt19937_64& rng, const CameraModel& camera, const Target& target, double near,
+                         double far, double margin_px) {
+  std::uniform_real_distribution<double> u(0, 1);
+  for (;;) {
+    const Eigen::Vector2d px(u(rng) * (camera.width() - 1), u(rng) * (camera.height() - 1));
+    Eigen::Vector3d bearing;
+    if (!camera.unproject(px, &bearing)) continue;
+    const Pose pose{random_rotation(rng), (near + (far - near) * u(rng)) * bearing};
+    bool visible = true;
+    for (const Marker& m : target.markers) {
+      // Inside the image, and within the lens model's field: the pixel maps back to the point's ray.
+      const Eigen::Vector3d p_C = pose.apply(m.position_m);
+      Eigen::Vector2d p;
+      Eigen::Vector3d back;
+      visible = visible && camera.project(p_C, &p) && camera.in_image(p, margin_px) && camera.unproject(p, &back) &&
+                back.cross(p_C.normalized()).norm() < 1e-9;
+    }
+    if (visible) return pose;
+  }
+}
+
+std::array<Eigen::Vector2d, 4> observe(std::mt19937_64& rng, const CameraModel& camera, const Target& target,
+                                       const Pose& pose, double sigma_px) {
+  std::normal_distribution<double> noise(0.0, sigma_px);
+  std::array<Eigen::Vector2d, 4> px;
+  for (int i = 0; i < 4; ++i) {
+    camera.project(pose.apply(target.markers[i].position_m), &px[i]);
+    if (sigma_px > 0) px[i] += Eigen::Vector2d(noise(rng), noise(rng));
+  }
+  return px;
+}
+
+}  // namespace tetrapulse::testing
