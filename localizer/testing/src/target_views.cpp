@@ -54,8 +54,11 @@ Pose random_visible_pose(std::mt19937_64& rng, const CameraModel& camera, const 
     const Pose pose{random_rotation(rng), (near + (far - near) * u(rng)) * bearing};
     bool visible = true;
     for (const Marker& m : target.markers) {
-      // Inside the image, and within the lens model's field: the pixel maps back to the point's ray.
+      // Inside the image, within the lens model's field (the pixel maps back to the
+      // point's ray), and within 78 degrees of the axis, so that a perturbed pose
+      // still has every marker at z > 0 where CameraModel projects.
       const Eigen::Vector3d p_C = pose.apply(m.position_m);
+      visible = visible && p_C.z() > 0.2 * p_C.norm();
       Eigen::Vector2d p;
       Eigen::Vector3d back;
       visible = visible && camera.project(p_C, &p) && camera.in_image(p, margin_px) && camera.unproject(p, &back) &&

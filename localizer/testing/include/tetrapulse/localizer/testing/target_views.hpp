@@ -20,8 +20,8 @@ CameraInfo fisheye_camera();
 // reader; the first target of the file.
 Target hardware_target(const std::string& file);
 
-// A random pose that puts every marker in front of the camera and inside the image,
-// `margin_px` from its border, with the target origin at [near, far] metres.
+// A random pose that puts every marker inside the image, `margin_px` from its border,
+// and within 78 degrees of the optical axis, with the target origin at [near, far] m.
 Pose random_visible_pose(std::mt19937_64& rng, const CameraModel& camera, const Target& target, double near,
                          double far, double margin_px);
 
