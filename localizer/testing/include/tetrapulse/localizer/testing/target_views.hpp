@@ -2,12 +2,18 @@
 // A target seen by a camera, with a known pose, for the tests and benchmarks of
 // identification and refinement. Frames and units as in pose.hpp.
 #include <array>
+#include <ostream>
 #include <random>
 #include <string>
 
 #include "tetrapulse/localizer/camera_model.hpp"
 #include "tetrapulse/localizer/pose.hpp"
 #include "tetrapulse/localizer/targets.hpp"
+
+namespace tetrapulse {
+// GoogleTest prints a camera parameter by its name.
+inline void PrintTo(const CameraInfo& camera, std::ostream* os) { *os << camera.name; }
+}  // namespace tetrapulse
 
 namespace tetrapulse::testing {
 
