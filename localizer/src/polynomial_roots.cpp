@@ -47,38 +47,63 @@ int real_quadratic_roots(double B, double C, double* y) {
   return 2;
 }
 
-}  // namespace
+// x^3 + a x^2 + b x + c = 0 with x = t - a/3 becomes t^3 + p t + q = 0.
+struct DepressedCubic {
+  double shift, third_p, half_q, disc;
 
-int real_cubic_roots(double c3, double c2, double c1, double c0, std::array<double, 3>* roots) {
-  const double a = c2 / c3, b = c1 / c3, c = c0 / c3;
-  // x = t - a/3 gives t^3 + p t + q = 0.
-  const double shift = a / 3.0;
-  const double p = b - a * shift;
-  const double q = (2.0 / 27.0) * a * a * a - a * b / 3.0 + c;
-  const double half_q = q / 2.0, third_p = p / 3.0;
-  const double disc = half_q * half_q + third_p * third_p * third_p;
-  auto& r = *roots;
-  int n;
-  if (disc > 0.0) {
-    // One real root (Cardano), u^3 taken with the larger magnitude to avoid cancellation.
+  DepressedCubic(double a, double b, double c) {
+    shift = a / 3.0;
+    const double p = b - a * shift;
+    const double q = (2.0 / 27.0) * a * a * a - a * b / 3.0 + c;
+    half_q = q / 2.0;
+    third_p = p / 3.0;
+    disc = half_q * half_q + third_p * third_p * third_p;
+  }
+  // The one real root when disc > 0 (Cardano; u^3 taken with the larger magnitude
+  // to avoid cancellation).
+  double single_root() const {
     const double u = std::cbrt(-half_q - std::copysign(std::sqrt(disc), half_q));
-    r[0] = (u != 0.0 ? u - third_p / u : 0.0) - shift;
-    n = 1;
-  } else {
-    // Three real roots: t = 2 m cos(phi), cos(3 phi) = -q / (2 m^3), m = sqrt(-p/3).
+    return (u != 0.0 ? u - third_p / u : 0.0) - shift;
+  }
+  // When disc <= 0: t = 2 m cos(phi - k 2pi/3), cos(3 phi) = -q / (2 m^3), m = sqrt(-p/3);
+  // writes the first `count` (k = 0 is the largest root).
+  void trigonometric_roots(int count, double* r) const {
     const double m = std::sqrt(-third_p);
     const double cos3 = m > 0.0 ? std::clamp(-half_q / (m * m * m), -1.0, 1.0) : 1.0;
     const double phi = std::acos(cos3) / 3.0;
     constexpr double kThird = 2.0943951023931954923;  // 2 pi / 3
-    r[0] = 2.0 * m * std::cos(phi) - shift;
-    r[1] = 2.0 * m * std::cos(phi - kThird) - shift;
-    r[2] = 2.0 * m * std::cos(phi + kThird) - shift;
-    n = 3;
+    for (int k = 0; k < count; ++k) r[k] = 2.0 * m * std::cos(phi - k * kThird) - shift;
   }
-  const std::array<double, 3> monic{a, b, c};
+};
+
+}  // namespace
+
+int real_cubic_roots(double c3, double c2, double c1, double c0, std::array<double, 3>* roots) {
+  const std::array<double, 3> monic{c2 / c3, c1 / c3, c0 / c3};
+  const DepressedCubic cubic(monic[0], monic[1], monic[2]);
+  auto& r = *roots;
+  int n = 1;
+  if (cubic.disc > 0.0) {
+    r[0] = cubic.single_root();
+  } else {
+    n = 3;
+    cubic.trigonometric_roots(n, r.data());
+  }
   for (int i = 0; i < n; ++i) r[i] = polish<3>(monic, r[i]);
   std::sort(r.begin(), r.begin() + n);
   return n;
+}
+
+double largest_real_cubic_root(double c3, double c2, double c1, double c0) {
+  const std::array<double, 3> monic{c2 / c3, c1 / c3, c0 / c3};
+  const DepressedCubic cubic(monic[0], monic[1], monic[2]);
+  double r;
+  if (cubic.disc > 0.0) {
+    r = cubic.single_root();
+  } else {
+    cubic.trigonometric_roots(1, &r);
+  }
+  return polish<3>(monic, r);
 }
 
 int real_quartic_roots(double c4, double c3, double c2, double c1, double c0, std::array<double, 4>* roots) {
@@ -90,9 +115,7 @@ int real_quartic_roots(double c4, double c3, double c2, double c1, double c0, st
   const double r = d - a * c / 4.0 + a2 * b / 16.0 - 3.0 / 256.0 * a2 * a2;
   // Ferrari: (y^2 + p/2 + m)^2 = 2m y^2 - q y + m^2 + m p + p^2/4 - r is a square in y
   // when 8 m^3 + 8 p m^2 + (2 p^2 - 8 r) m - q^2 = 0; its largest root is the best conditioned.
-  std::array<double, 3> resolvent;
-  const int nm = real_cubic_roots(8.0, 8.0 * p, 2.0 * p * p - 8.0 * r, -q * q, &resolvent);
-  const double m = resolvent[nm - 1];
+  const double m = largest_real_cubic_root(8.0, 8.0 * p, 2.0 * p * p - 8.0 * r, -q * q);
   double y[4];
   int n = 0;
   if (m > 1e-12 * (std::abs(p) + std::sqrt(std::abs(r)))) {

@@ -57,6 +57,18 @@ TEST(PolynomialRoots, CubicFindsAllRealRootsAndOnlyThose) {
   }
 }
 
+TEST(PolynomialRoots, LargestCubicRootIsTheLastOfAll) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-10, 10);
+  for (int i = 0; i < 10000; ++i) {
+    const double c3 = u(rng), c2 = u(rng), c1 = u(rng), c0 = u(rng);
+    std::array<double, 3> roots;
+    const int n = real_cubic_roots(c3, c2, c1, c0, &roots);
+    const double largest = largest_real_cubic_root(c3, c2, c1, c0);
+    EXPECT_NEAR(largest, roots[n - 1], 1e-9 * (1 + std::abs(largest)));
+  }
+}
+
 TEST(PolynomialRoots, QuarticFindsFourTwoOrNoRealRoots) {
   std::mt19937_64 rng(22);
   std::uniform_real_distribution<double> u(-3, 3);
