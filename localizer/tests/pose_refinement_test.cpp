@@ -156,6 +156,7 @@ TEST_P(PoseRefinement, SphereCentroidModelRemovesTheSilhouetteBias) {
     const auto a = refine_pose(camera_, obs, truth, with);
     const auto b = refine_pose(camera_, obs, truth, without);
     ASSERT_TRUE(a && b);
+    EXPECT_TRUE(a->converged) << a->iterations << " iterations, rms " << a->rms_px << " initial " << a->initial_rms_px;
     worst_with = std::max(worst_with, a->rms_px);
     worst_pose_with = std::max(worst_pose_with, pose_error(a->pose, truth));
     mean_without += b->rms_px / trials;
