@@ -72,28 +72,31 @@ class ReprojectionProblem {
       const Eigen::Vector2d r = h + offsets_[i] - markers_[i].pixel;
       const double s2 = r.squaredNorm();
       *squared += s2;
-      const bool outlier = huber_ > 0 && s2 > huber_ * huber_;
-      const double s = std::sqrt(s2);
-      *cost += outlier ? 2 * huber_ * s - huber_ * huber_ : s2;
+      // Loss rho(s^2): s^2, or Huber's in its smooth form 2 k^2 (sqrt(1 + s^2/k^2) - 1),
+      // quadratic below k and linear above, whose curvature is continuous: with the
+      // kinked form, Levenberg-Marquardt crawls when a residual sits at the kink.
+      double weight = 1, radial = 0;  // rho'(s^2), and the curvature removed along r
+      if (huber_ > 0) {
+        const double q = 1 + s2 / (huber_ * huber_), root = std::sqrt(q);
+        *cost += 2 * huber_ * huber_ * (root - 1);
+        weight = 1 / root;
+        radial = 1 - 1 / q;
+      } else {
+        *cost += s2;
+      }
       if (!H) continue;
       Eigen::Matrix<double, 2, 6> J;
       J.leftCols<3>() = -Jp * skew(rotated);  // d p / d w = -[R X]x
       J.rightCols<3>() = Jp;                  // d p / d v = I
-      if (outlier) {
-        // Huber's loss is linear in |r| here: gradient weight huber/|r|, and no
-        // curvature along r (Triggs' correction), so only the part of J across r
-        // enters H. Without it the iteration converges only linearly.
-        const double w = huber_ / s;
-        const Eigen::Vector2d across(-r.y() / s, r.x() / s);
-        const Eigen::Matrix<double, 1, 6> Ja = across.transpose() * J;
-        H->noalias() += w * Ja.transpose() * Ja;
-        if (W) W->noalias() += w * J.transpose() * J;
-        g->noalias() += w * J.transpose() * r;
-      } else {
-        H->noalias() += J.transpose() * J;
-        if (W) W->noalias() += J.transpose() * J;
-        g->noalias() += J.transpose() * r;
+      const Matrix6 JtJ = J.transpose() * J;
+      // Gauss-Newton for a robust loss (Triggs et al.): H += rho' J^T (I - radial r r^T/|r|^2) J.
+      *H += weight * JtJ;
+      if (radial > 0) {
+        const Eigen::Matrix<double, 1, 6> Jr = r.transpose() * J;
+        *H -= (weight * radial / s2) * Jr.transpose() * Jr;
       }
+      *g += weight * J.transpose() * r;
+      if (W) *W += weight * JtJ;
     }
     return -1;
   }
@@ -112,7 +115,8 @@ Pose step(const Pose& pose, const Vector6& delta) {
 
 // Levenberg-Marquardt with Marquardt's scaling (damping proportional to diag(H)) from
 // out->pose. Converged when the undamped Gauss-Newton step promises a negligible
-// decrease (g^T H^-1 g of the cost sum |r|^2): 1e-12 of it, or below rounding.
+// decrease (g^T H^-1 g of the cost sum |r|^2): 1e-12 of it, or below rounding; or
+// when an accepted step no longer changes the cost.
 // Returns false when the normal equations cannot be solved.
 bool levenberg_marquardt(const ReprojectionProblem& problem, size_t markers, int max_iterations, RefinedPose* out) {
   double cost, squared;
@@ -141,10 +145,14 @@ bool levenberg_marquardt(const ReprojectionProblem& problem, size_t markers, int
     const Pose candidate = step(out->pose, delta);
     double new_cost, new_squared;
     if (problem.evaluate(candidate, &new_cost, &new_squared) < 0 && new_cost < cost) {
+      // A step that changes the cost only in its tenth digit also ends the search:
+      // near a singular H (three markers near the danger cylinder) or at a Huber
+      // kink the Gauss-Newton prediction above is unreliable and steps only crawl.
+      const bool stalled = cost - new_cost <= 1e-10 * cost;
       out->pose = candidate;
       problem.evaluate(out->pose, &cost, &squared, &H, &g);
       lambda = std::max(lambda / 3, 1e-12);
-      converged = at_minimum();
+      converged = stalled || at_minimum();
     } else {
       lambda *= 4;
     }

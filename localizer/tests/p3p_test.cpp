@@ -116,7 +116,8 @@ TEST_P(P3P, NoiseMovesThePoseInProportion) {
       for (auto& x : p.x) {
         // Perturb in the tangent plane: two components of sigma/sqrt(2) each.
         const Eigen::Vector3d a = x.unitOrthogonal(), b = x.cross(a);
-        x = (x + noise(rng) * a + noise(rng) * b).normalized();
+        const double na = noise(rng), nb = noise(rng);
+        x = (x + na * a + nb * b).normalized();
       }
       PoseCandidates poses;
       const int n = solve_p3p(GetParam(), p.x, p.X, &poses);

@@ -49,7 +49,7 @@ TEST(PolynomialRoots, CubicFindsAllRealRootsAndOnlyThose) {
       EXPECT_TRUE(std::is_sorted(roots.begin(), roots.end()));
     } else {
       const double r = u(rng);
-      const std::complex<double> z(u(rng), 0.1 + std::abs(u(rng)));
+      const std::complex<double> z{u(rng), 0.1 + std::abs(u(rng))};
       const auto c = expand(scale, {r, z, std::conj(z)});
       ASSERT_EQ(real_cubic_roots(c[0], c[1], c[2], c[3], &roots), 1);
       EXPECT_LT(worst_miss({r}, roots.data(), 1), 1e-12);
@@ -74,7 +74,7 @@ TEST(PolynomialRoots, QuarticFindsFourTwoOrNoRealRoots) {
   std::uniform_real_distribution<double> u(-3, 3);
   for (int i = 0; i < 10000; ++i) {
     const double scale = u(rng);
-    const std::complex<double> z(u(rng), 0.1 + std::abs(u(rng))), w(u(rng), 0.1 + std::abs(u(rng)));
+    const std::complex<double> z{u(rng), 0.1 + std::abs(u(rng))}, w{u(rng), 0.1 + std::abs(u(rng))};
     std::vector<double> real;
     std::vector<std::complex<double>> all;
     const int real_count = 2 * (i % 3);  // 0, 2 or 4

@@ -36,8 +36,8 @@ std::vector<MarkerObservation> observations(const Target& target, const std::arr
 // random translation of `fraction` of its distance.
 Pose perturbed(std::mt19937_64& rng, const Pose& pose, double angle, double fraction) {
   std::normal_distribution<double> g;
-  const Eigen::Vector3d axis = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
-  const Eigen::Vector3d shift = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+  const Eigen::Vector3d axis = Eigen::Vector3d{g(rng), g(rng), g(rng)}.normalized();
+  const Eigen::Vector3d shift = Eigen::Vector3d{g(rng), g(rng), g(rng)}.normalized();
   return Pose{so3_exp(angle * axis) * pose.R, pose.t + fraction * pose.t.norm() * shift};
 }
 
@@ -114,24 +114,48 @@ TEST_P(PoseRefinement, CovarianceAgreesWithMonteCarlo) {
   }
 }
 
-TEST_P(PoseRefinement, ThreeMarkersFitExactlyAndNeedAGivenSigmaForACovariance) {
+TEST_P(PoseRefinement, ThreeMarkersConvergeToTheTruePose) {
+  // Three markers: six residuals for six unknowns. Noise-free, the fit is exact.
   std::mt19937_64 rng(43);
-  for (int i = 0; i < 200; ++i) {
+  int failed = 0;
+  const int trials = 500;
+  for (int i = 0; i < trials; ++i) {
+    const Pose truth = random_visible_pose(rng, camera_, target_, 0.5, 3.0, 2.0);
+    auto obs = observations(target_, observe(rng, camera_, target_, truth, 0.0));
+    obs.erase(obs.begin() + i % 4);
+    const auto refined = refine_pose(camera_, obs, perturbed(rng, truth, 0.02, 0.01));
+    ASSERT_TRUE(refined.has_value());
+    failed += !(refined->converged && refined->rms_px < 1e-6 && pose_error(refined->pose, truth) < 1e-8);
+  }
+  std::printf("%s, three markers: %d of %d not converged to the true pose\n", GetParam().name.c_str(), failed,
+              trials);
+  EXPECT_LE(failed, trials / 100);
+}
+
+TEST_P(PoseRefinement, ThreeMarkersHaveACovarianceOnlyWithAGivenSigma) {
+  // No redundancy to estimate sigma from: the covariance needs it given. (Near the
+  // danger cylinder noise can leave three markers without an exact fit; the least-
+  // squares pose then sits where J^T J is singular and has no covariance at all.)
+  std::mt19937_64 rng(47);
+  int exact = 0;
+  for (int i = 0; i < 100; ++i) {
     const Pose truth = random_visible_pose(rng, camera_, target_, 0.5, 3.0, 2.0);
     auto obs = observations(target_, observe(rng, camera_, target_, truth, 0.3));
     obs.pop_back();
-    // Three noisy markers: six residuals, six unknowns, so the fit is exact (a P3P pose).
-    const auto free = refine_pose(camera_, obs, perturbed(rng, truth, 0.02, 0.01));
-    ASSERT_TRUE(free.has_value());
-    EXPECT_TRUE(free->converged);
-    EXPECT_LT(free->rms_px, 1e-6);
-    EXPECT_FALSE(free->has_covariance);
+    const auto estimated = refine_pose(camera_, obs, truth);
+    ASSERT_TRUE(estimated.has_value());
+    EXPECT_FALSE(estimated->has_covariance);
     RefinementOptions given;
     given.sigma_px = 0.3;
-    const auto with_sigma = refine_pose(camera_, obs, free->pose, given);
+    const auto with_sigma = refine_pose(camera_, obs, truth, given);
     ASSERT_TRUE(with_sigma.has_value());
-    EXPECT_TRUE(with_sigma->has_covariance);
+    if (with_sigma->rms_px < 1e-6) {
+      ++exact;
+      EXPECT_TRUE(with_sigma->has_covariance);
+      EXPECT_EQ(with_sigma->sigma_px, 0.3);
+    }
   }
+  EXPECT_GE(exact, 90);
 }
 
 TEST_P(PoseRefinement, SphereCentroidModelRemovesTheSilhouetteBias) {
@@ -190,7 +214,7 @@ TEST(PoseRefinementLoss, HuberDownweightsAnOutlier) {
     for (const auto& X : points) {
       Eigen::Vector2d px;
       ASSERT_TRUE(camera.project(truth.apply(X), &px));
-      obs.push_back({X, px + Eigen::Vector2d(noise(rng), noise(rng))});
+      obs.push_back({X, px + Eigen::Vector2d{noise(rng), noise(rng)}});
     }
     obs[i % obs.size()].pixel += Eigen::Vector2d(15.0 * std::cos(i), 15.0 * std::sin(i));
     RefinementOptions huber;

@@ -18,7 +18,7 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
 
 Vec3 random_unit(std::mt19937_64& rng) {
   std::normal_distribution<double> g;
-  return Vec3(g(rng), g(rng), g(rng)).normalized();
+  return Vec3{g(rng), g(rng), g(rng)}.normalized();  // braces: evaluated in order
 }
 
 // A point in front of the camera, within `half_angle` of the optical axis, at
@@ -125,7 +125,7 @@ Triangle small_far_triangle(std::mt19937_64& rng, double side) {
 
 Eigen::Matrix3d random_rotation(std::mt19937_64& rng) {
   std::normal_distribution<double> g;
-  return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+  return Eigen::Quaterniond{g(rng), g(rng), g(rng), g(rng)}.normalized().toRotationMatrix();
 }
 
 P3PProblem random_p3p_problem(std::mt19937_64& rng, P3PCondition condition, double level) {
@@ -140,8 +140,8 @@ P3PProblem random_p3p_problem(std::mt19937_64& rng, P3PCondition condition, doub
   const double size = std::max({(p[0] - p[1]).norm(), (p[0] - p[2]).norm(), (p[1] - p[2]).norm()});
   P3PProblem problem;
   problem.truth.R = random_rotation(rng);
-  problem.truth.t = (p[0] + p[1] + p[2]) / 3 + size * Vec3(uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5),
-                                                           uniform(rng, -0.5, 0.5));
+  problem.truth.t = (p[0] + p[1] + p[2]) / 3 + size * Vec3{uniform(rng, -0.5, 0.5), uniform(rng, -0.5, 0.5),
+                                                           uniform(rng, -0.5, 0.5)};
   for (int i = 0; i < 3; ++i) {
     problem.X[i] = problem.truth.R.transpose() * (p[i] - problem.truth.t);
     problem.x[i] = p[i].normalized();

@@ -8,31 +8,14 @@
 namespace tetrapulse::testing {
 
 CameraInfo wide_plumb_bob_camera() {
-  CameraInfo c;
-  c.name = "wide_plumb_bob";
-  c.width = 752;
-  c.height = 480;
-  c.fx = 376.0;
-  c.fy = 376.5;
-  c.cx = 375.6;
-  c.cy = 240.3;
-  c.model = DistortionModel::kPlumbBob;
-  c.distortion = {-0.2, 0.05, 0.0011, -0.0007, 0.0};  // monotonic over the whole sensor
-  return c;
+  // k1..k3 keep the radial distortion monotonic over the whole sensor.
+  return CameraInfo{"wide_plumb_bob", 752, 480, 376.0, 376.5, 375.6, 240.3, DistortionModel::kPlumbBob,
+                    {-0.2, 0.05, 0.0011, -0.0007, 0.0}};
 }
 
 CameraInfo fisheye_camera() {
-  CameraInfo c;
-  c.name = "fisheye";
-  c.width = 752;
-  c.height = 480;
-  c.fx = 210.0;
-  c.fy = 210.4;
-  c.cx = 376.2;
-  c.cy = 239.4;
-  c.model = DistortionModel::kEquidistant;
-  c.distortion = {0.02, -0.01, 0.003, -0.0005, 0};
-  return c;
+  return CameraInfo{"fisheye", 752, 480, 210.0, 210.4, 376.2, 239.4, DistortionModel::kEquidistant,
+                    {0.02, -0.01, 0.003, -0.0005, 0.0}};
 }
 
 Target hardware_target(const std::string& file) {
@@ -48,7 +31,7 @@ Pose random_visible_pose(std::mt19937_64& rng, const CameraModel& camera, const 
                          double far, double margin_px) {
   std::uniform_real_distribution<double> u(0, 1);
   for (;;) {
-    const Eigen::Vector2d px(u(rng) * (camera.width() - 1), u(rng) * (camera.height() - 1));
+    const Eigen::Vector2d px{u(rng) * (camera.width() - 1), u(rng) * (camera.height() - 1)};
     Eigen::Vector3d bearing;
     if (!camera.unproject(px, &bearing)) continue;
     const Pose pose{random_rotation(rng), (near + (far - near) * u(rng)) * bearing};
@@ -74,7 +57,7 @@ std::array<Eigen::Vector2d, 4> observe(std::mt19937_64& rng, const CameraModel& 
   std::array<Eigen::Vector2d, 4> px;
   for (int i = 0; i < 4; ++i) {
     camera.project(pose.apply(target.markers[i].position_m), &px[i]);
-    if (sigma_px > 0) px[i] += Eigen::Vector2d(noise(rng), noise(rng));
+    if (sigma_px > 0) px[i] += Eigen::Vector2d{noise(rng), noise(rng)};
   }
   return px;
 }

@@ -5,7 +5,7 @@
 // X_i marker centres (target frame, metres), u_i observed centroids (pixels), h the
 // camera model's projection of the marker centre or, for markers of known diameter,
 // the centroid of the marker sphere's image (sphere_image.hpp); rho the identity or
-// Huber's loss. Levenberg-Marquardt with the rotation updated on SO(3):
+// a (smooth) Huber loss. Levenberg-Marquardt with the rotation updated on SO(3):
 //   R <- exp([w]x) R,  t <- t + v,
 // (w, v) in the camera frame: w rotates the target about its origin.
 // Breitenmoser et al. 2011, Sec. IV-C, refine the P3P pose with all markers.
@@ -27,7 +27,8 @@ struct MarkerObservation {
 
 struct RefinementOptions {
   int max_iterations = 50;
-  // > 0: Huber loss, quadratic up to this residual (pixels), linear beyond.
+  // > 0: Huber loss with this threshold (pixels), in its smooth form
+  // rho(s^2) = 2 k^2 (sqrt(1 + s^2/k^2) - 1): quadratic below k, linear above.
   double huber_px = 0;
   // > 0: the centroids' noise per image axis (pixels), used for the covariance.
   // 0: estimated from the residuals when there is redundancy (4 markers or more).
