@@ -20,7 +20,7 @@ enum class P4PRanking {
   // Each of the 24 assignments is solved as a known-order P4P (solve_p4p below) and
   // ranked by the RMS error of all four bearings. The default: at 0.3 px blob noise
   // on the paper's target at up to 4 m, a wrong best candidate never led the
-  // runner-up by more than 0.54 px (p4p_test.cpp).
+  // runner-up by more than 0.62 px (p4p_test.cpp).
   kBestTriple,
   // The paper's: P3P on the three bearings furthest from coplanar for each of the 24
   // assignments; the fourth bearing's error ranks the (up to 96) poses. Noise on

@@ -36,7 +36,9 @@ struct RefinementOptions {
   // > 0: the markers are spheres of this diameter (metres).
   double marker_diameter_m = 0;
   // With a known diameter, predict the centroid of the sphere's image rather than
-  // the projection of its centre.
+  // the projection of its centre (through the full lens model, not to first order:
+  // the first-order pinhole correction is off by up to 0.36 px on our wide
+  // plumb_bob camera; sphere_image_test.cpp).
   bool sphere_centroid = true;
 };
 
@@ -44,13 +46,14 @@ struct RefinedPose {
   Pose pose;
   double rms_px = 0;          // RMS over markers of |h - u| at the solution
   double initial_rms_px = 0;  // the same at `initial`
-  int iterations = 0;    // Levenberg-Marquardt iterations taken
-  bool converged = false;  // the step or the cost change fell below tolerance
+  int iterations = 0;        // Levenberg-Marquardt iterations taken
+  bool converged = false;    // no further decrease possible (gradient or cost change)
   // Covariance of (w, v) (rad, m) = sigma^2 (J^T W J)^-1 at the solution, W the
   // Huber weights (identity without Huber).
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
   double sigma_px = 0;           // the sigma used (given or estimated)
-  bool has_covariance = false;   // false with three markers and no sigma_px given
+  // False with three markers and no sigma_px given, or where J^T W J is singular.
+  bool has_covariance = false;
 };
 
 struct RefinementError {
