@@ -31,8 +31,9 @@ enum class P4PRanking {
 
 struct P4POptions {
   P3PSolver solver = kDefaultP3PSolver;
-  // When set, errors are also measured in pixels (the observed pixel of a bearing is
-  // its projection) and candidates are ranked by them; otherwise by angle.
+  // When set and every bearing projects, errors are also measured in pixels (the
+  // observed pixel of a bearing is its projection) and candidates are ranked by
+  // them; otherwise by angle (P4PIdentification::in_pixels tells which).
   const CameraModel* camera = nullptr;
   P4PRanking ranking = P4PRanking::kBestTriple;
 };
