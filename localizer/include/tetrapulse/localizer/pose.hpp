@@ -28,6 +28,9 @@ struct Pose {
   }
 };
 
+// exp([w]x): the rotation by |w| radians about the axis w (Rodrigues' formula).
+Eigen::Matrix3d so3_exp(const Eigen::Vector3d& w);
+
 // Angle of the rotation R_a^T R_b in radians, in [0, pi].
 double rotation_angle_between(const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb);
 
