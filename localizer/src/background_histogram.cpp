@@ -25,6 +25,14 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
     shift_ = 0;
     quantum_ = 1;
     used_ = 256;
+    bins_.assign(256, 0);
+    if (window.area() < 16384) {  // small windows: one histogram to clear
+      for (int y = window.y; y < window.y + window.height; ++y) {
+        const uint8_t* p = image.ptr<uint8_t>(y) + window.x;
+        for (int x = 0; x < window.width; ++x) ++bins_[p[x]];
+      }
+      return;
+    }
     partial_.assign(4 * 256, 0);
     uint32_t* h = partial_.data();
     for (int y = window.y; y < window.y + window.height; ++y) {
@@ -38,19 +46,33 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
       }
       for (; x < window.width; ++x) ++h[p[x]];
     }
-    bins_.resize(256);
     for (int b = 0; b < 256; ++b) bins_[b] = h[b] + h[256 + b] + h[512 + b] + h[768 + b];
     return;
   }
   // 16-bit: bins as wide as the data's quantum (a 10- or 12-bit sensor shifted
-  // up fills every 64th or 16th value), and wide enough for at most 4096 bins;
-  // only the bins in use are cleared.
+  // up fills every 64th or 16th value), and wide enough for at most 4096 bins.
+  // Large windows count every value once, then fold; small ones look at their
+  // values twice rather than clear 65536 counters.
   unsigned top = 0, any_bits = 0;
-  for (int y = window.y; y < window.y + window.height; ++y) {
-    const uint16_t* p = image.ptr<uint16_t>(y) + window.x;
-    for (int x = 0; x < window.width; ++x) {
-      top = std::max<unsigned>(top, p[x]);
-      any_bits |= p[x];
+  const bool full = window.area() >= 65536;
+  if (full) {
+    full_.assign(65536, 0);
+    for (int y = window.y; y < window.y + window.height; ++y) {
+      const uint16_t* p = image.ptr<uint16_t>(y) + window.x;
+      for (int x = 0; x < window.width; ++x) ++full_[p[x]];
+    }
+    for (unsigned v = 0; v < 65536; ++v) {
+      if (full_[v] == 0) continue;
+      top = v;
+      any_bits |= v;
+    }
+  } else {
+    for (int y = window.y; y < window.y + window.height; ++y) {
+      const uint16_t* p = image.ptr<uint16_t>(y) + window.x;
+      for (int x = 0; x < window.width; ++x) {
+        top = std::max<unsigned>(top, p[x]);
+        any_bits |= p[x];
+      }
     }
   }
   int quantum_shift = 0;
@@ -62,6 +84,10 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
   quantum_ = 1 << quantum_shift;
   used_ = static_cast<int>(top >> shift_) + 1;
   bins_.assign(static_cast<size_t>(std::min(used_, kMaxBins)), 0);
+  if (full) {
+    for (unsigned v = 0; v <= top; ++v) bins_[v >> shift_] += full_[v];
+    return;
+  }
   for (int y = window.y; y < window.y + window.height; ++y) {
     const uint16_t* p = image.ptr<uint16_t>(y) + window.x;
     for (int x = 0; x < window.width; ++x) ++bins_[p[x] >> shift_];
@@ -110,12 +136,15 @@ BackgroundFit BackgroundHistogram::fit_background() const {
 }
 
 double BackgroundHistogram::otsu() const {
-  const int n = std::min(used_, static_cast<int>(bins_.size()));
+  int lo = 0, hi = std::min(used_, static_cast<int>(bins_.size())) - 1;
+  while (lo < hi && bins_[lo] == 0) ++lo;
+  while (hi > lo && bins_[hi] == 0) --hi;
   double sum_all = 0;
-  for (int b = 0; b < n; ++b) sum_all += double(bins_[b]) * b;
+  for (int b = lo; b <= hi; ++b) sum_all += double(bins_[b]) * b;
   double w0 = 0, sum0 = 0, best = -1;
   int best_t = -1;
-  for (int t = 0; t + 1 < n; ++t) {
+  for (int t = lo; t < hi; ++t) {
+    if (bins_[t] == 0) continue;  // an empty bin leaves the split as it was
     w0 += bins_[t];
     sum0 += double(bins_[t]) * t;
     const double w1 = double(total_) - w0;

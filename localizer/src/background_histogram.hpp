@@ -38,6 +38,7 @@ class BackgroundHistogram {
 
   std::vector<uint32_t> bins_;
   std::vector<uint32_t> partial_;  // 4 interleaved 8-bit histograms (fewer store-to-load stalls)
+  std::vector<uint32_t> full_;     // every 16-bit value (large windows)
   int used_ = 0;                   // bins in use
   int shift_ = 0;
   int quantum_ = 1;  // step between the values the data holds (16-bit data from a 10- or 12-bit sensor)

@@ -87,6 +87,7 @@ int BlobRecovery::split_by_erosion(const cv::Mat& work, cv::Rect window, const L
         const int p = (y + oy) * width + (x + ox);
         grower->set_label(p, r.label);
         grower->pixels().push_back(p);
+        r.box |= cv::Rect(x + ox, y + oy, 1, 1);
       }
       r.end = static_cast<int>(grower->pixels().size());
       regions->push_back(r);

@@ -3,6 +3,7 @@
 // brighter than the background, CV_8UC1 or CV_16UC1), their measurement and
 // their acceptance tests.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -41,6 +42,7 @@ struct RegionSums {
 struct Region {
   int32_t label = 0;
   int begin = 0, end = 0;  // its pixels: RegionGrower::pixels()[begin, end)
+  cv::Rect box;            // their bounding box
   RegionSums sums;
   Blob blob;
   bool accepted = false;   // reported as a blob
@@ -80,13 +82,18 @@ class RegionGrower {
 
  private:
   template <typename T>
-  void grow_typed(const cv::Mat& work, cv::Rect window, int seed_min, int keep_min, std::vector<Region>* regions);
+  void grow_typed(const cv::Mat& work, cv::Rect window, int seed_min, int keep_min, bool masked,
+                  std::vector<Region>* regions);
+  template <typename T>
+  void grow_from(const cv::Mat& work, cv::Rect window, int seed, int keep_min, std::vector<Region>* regions);
   template <typename T>
   void measure_typed(const cv::Mat& work, cv::Rect window, const Levels& levels, Region* region);
 
   cv::Size size_;
   std::vector<int32_t> labels_;
   std::vector<int32_t> pixels_;
+  std::vector<std::pair<int, int>> queue_;  // (x, y) of pixels still to grow from
+  cv::Mat seed_mask_;  // pixels at or above the seed level (large windows)
   int32_t next_label_ = 1;
   std::vector<int> row_min_, row_max_;
   std::vector<Eigen::Vector2d> hull_points_, hull_;

@@ -262,7 +262,7 @@ TEST(BlobExtractor, FindsDarkMarkersOnABrightBackground) {
 }
 
 TEST(BlobExtractor, Handles16BitImages) {
-  auto img = canvas(160, 120, 3000);
+  auto img = canvas(320, 240, 3000);
   const std::vector<Eigen::Vector2d> truth = {{40.3, 30.2}, {110.7, 40.9}, {60.1, 90.4}};
   for (const auto& c : truth) add_gaussian(&img, c, 1.6, 30000);
   add_noise(&img, 40.0, 3);
@@ -276,17 +276,20 @@ TEST(BlobExtractor, Handles16BitImages) {
 }
 
 TEST(BlobExtractor, Handles12BitDataShiftedInto16Bits) {
-  auto img = canvas(160, 120, 200);
-  const Eigen::Vector2d c(70.3, 50.8);
-  add_gaussian(&img, c, 1.6, 3000);
-  add_noise(&img, 3.0, 3);
-  cv::Mat twelve = quantise(img, CV_16U);
-  cv::Mat shifted = twelve * 16;  // sensor data in the top 12 bits
-  const auto out = extract(shifted, 1);
-  ASSERT_EQ(out.blobs.size(), 1u);
-  EXPECT_LT((out.blobs[0].centroid - c).norm(), 0.05);
-  EXPECT_NEAR(out.windows[0].background, 200 * 16, 16);
-  EXPECT_NEAR(out.windows[0].background_sigma, 3 * 16, 8);
+  // Small and large windows take different paths through the histogram.
+  for (const cv::Size size : {cv::Size(160, 120), cv::Size(320, 240)}) {
+    auto img = canvas(size.width, size.height, 200);
+    const Eigen::Vector2d c(70.3, 50.8);
+    add_gaussian(&img, c, 1.6, 3000);
+    add_noise(&img, 3.0, 3);
+    cv::Mat twelve = quantise(img, CV_16U);
+    cv::Mat shifted = twelve * 16;  // sensor data in the top 12 bits
+    const auto out = extract(shifted, 1);
+    ASSERT_EQ(out.blobs.size(), 1u);
+    EXPECT_LT((out.blobs[0].centroid - c).norm(), 0.05);
+    EXPECT_NEAR(out.windows[0].background, 200 * 16, 16);
+    EXPECT_NEAR(out.windows[0].background_sigma, 3 * 16, 8);
+  }
 }
 
 cv::Mat3b colour_canvas(int w, int h, cv::Vec3b bgr) { return cv::Mat3b(h, w, bgr); }
