@@ -93,17 +93,30 @@ void check_blob(const Blob& b) {
   RC_ASSERT(b.convexity <= 1.0);
 }
 
-RC_GTEST_PROP(BlobExtractorProperty, WholeImageNeverFailsOnAnyPicture, ()) {
+// An image of any size (empty included), type and content, and the seed
+// that drew it, from rapidcheck's generators.
+struct Picture {
+  cv::Mat image;
+  uint32_t seed = 0;
+  bool colour = false;
+};
+
+Picture any_picture() {
   const int width = *rc::gen::inRange(0, 64);
   const int height = *rc::gen::inRange(0, 64);
   const int type = *rc::gen::element(CV_8UC1, CV_16UC1, CV_8UC3);
   const auto content = *rc::gen::element(Content::kNoise, Content::kConstant, Content::kSaturated, Content::kSpots,
                                          Content::kStripes);
   const uint32_t seed = *rc::gen::arbitrary<uint32_t>();
+  return Picture{make_image(width, height, type, content, seed), seed, type == CV_8UC3};
+}
+
+RC_GTEST_PROP(BlobExtractorProperty, WholeImageNeverFailsOnAnyPicture, ()) {
+  const Picture picture = any_picture();
+  const cv::Mat& img = picture.image;
   const int expected = *rc::gen::inRange(-2, 24);
-  std::mt19937 rng(seed);
-  const cv::Mat img = make_image(width, height, type, content, seed);
-  const BlobExtractorConfig config = make_config(rng, type == CV_8UC3);
+  std::mt19937 rng(picture.seed);
+  const BlobExtractorConfig config = make_config(rng, picture.colour);
   BlobExtractor extractor(config);
   BlobExtraction out;
   const auto ok = extractor.extract(img, expected, &out);
@@ -124,15 +137,11 @@ RC_GTEST_PROP(BlobExtractorProperty, WholeImageNeverFailsOnAnyPicture, ()) {
 }
 
 RC_GTEST_PROP(BlobExtractorProperty, RoiModeAnswersEveryRoiWhereverItLies, ()) {
-  const int width = *rc::gen::inRange(0, 64);
-  const int height = *rc::gen::inRange(0, 64);
-  const int type = *rc::gen::element(CV_8UC1, CV_16UC1, CV_8UC3);
-  const auto content = *rc::gen::element(Content::kNoise, Content::kConstant, Content::kSaturated, Content::kSpots,
-                                         Content::kStripes);
-  const uint32_t seed = *rc::gen::arbitrary<uint32_t>();
+  const Picture picture = any_picture();
+  const cv::Mat& img = picture.image;
+  const int width = img.cols, height = img.rows;
   const int count = *rc::gen::inRange(0, 20);
-  std::mt19937 rng(seed);
-  const cv::Mat img = make_image(width, height, type, content, seed);
+  std::mt19937 rng(picture.seed);
   std::vector<BlobRoi> rois(static_cast<size_t>(count));
   for (int i = 0; i < count; ++i) {
     BlobRoi& r = rois[size_t(i)];
@@ -141,7 +150,7 @@ RC_GTEST_PROP(BlobExtractorProperty, RoiModeAnswersEveryRoiWhereverItLies, ()) {
     r.aperture_radius = odd_double(rng, -3, 12);
     r.tag = i;
   }
-  BlobExtractor extractor(make_config(rng, type == CV_8UC3));
+  BlobExtractor extractor(make_config(rng, picture.colour));
   BlobExtraction out;
   const auto ok = extractor.extract(img, rois, &out);
   if (img.empty()) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "spot_renderer.hpp"
@@ -38,38 +39,48 @@ bool has_reason(const BlobExtraction& out, RejectReason reason) {
   return false;
 }
 
-TEST(BlobExtractor, GaussianCentroidsWithin005PxWithoutNoise) {
+// Worst centroid error over a 5 x 5 grid of sub-pixel offsets of one spot
+// that `draw(image, centre)` renders on a noiseless 8-bit background of 20.
+template <typename Draw>
+double worst_centroid_error(Draw draw) {
   double worst = 0;
-  int spots = 0;
-  for (const double sigma : {0.7, 1.0, 1.5, 2.5, 4.0})
-    for (int i = 0; i < 5; ++i)
-      for (int j = 0; j < 5; ++j) {
-        auto img = canvas(64, 64, 20);
-        const Eigen::Vector2d c(31.0 + 0.2 * i + 0.037, 30.0 + 0.2 * j + 0.081);
-        add_gaussian(&img, c, sigma, 200);
-        const auto out = extract(quantise(img, CV_8U), 1);
-        ASSERT_EQ(out.blobs.size(), 1u) << "sigma " << sigma;
-        worst = std::max(worst, (out.blobs[0].centroid - c).norm());
-        ++spots;
-      }
-  EXPECT_EQ(spots, 125);
-  EXPECT_LT(worst, 0.05);
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) {
+      auto img = canvas(64, 64, 20);
+      const Eigen::Vector2d c(31.0 + 0.2 * i + 0.037, 30.0 + 0.2 * j + 0.081);
+      draw(&img, c);
+      const auto out = extract(quantise(img, CV_8U), 1);
+      if (out.blobs.size() != 1) return std::numeric_limits<double>::infinity();
+      worst = std::max(worst, (out.blobs[0].centroid - c).norm());
+    }
+  return worst;
+}
+
+TEST(BlobExtractor, GaussianCentroidsWithin005PxWithoutNoise) {
+  for (const double sigma : {0.7, 1.0, 1.5, 2.5, 4.0}) {
+    EXPECT_LT(worst_centroid_error([&](cv::Mat1d* img, const Eigen::Vector2d& c) { add_gaussian(img, c, sigma, 200); }),
+              0.05)
+        << "sigma " << sigma;
+  }
 }
 
 TEST(BlobExtractor, DiscCentroidsWithin005PxWithoutNoise) {
-  double worst = 0;
-  for (const double radius : {1.5, 2.5, 4.0, 7.0})
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j) {
-        auto img = canvas(48, 48, 12);
-        const Eigen::Vector2d c(23.0 + 0.25 * i + 0.11, 24.0 + 0.25 * j + 0.06);
-        add_disc(&img, c, radius, 180);
-        const auto out = extract(quantise(img, CV_8U), 1);
-        ASSERT_EQ(out.blobs.size(), 1u) << "radius " << radius;
-        worst = std::max(worst, (out.blobs[0].centroid - c).norm());
-        EXPECT_NEAR(out.blobs[0].intensity, 180 * M_PI * radius * radius, 0.02 * 180 * M_PI * radius * radius);
-      }
-  EXPECT_LT(worst, 0.05);
+  for (const double radius : {1.5, 2.5, 4.0, 7.0}) {
+    EXPECT_LT(worst_centroid_error([&](cv::Mat1d* img, const Eigen::Vector2d& c) { add_disc(img, c, radius, 180); }),
+              0.05)
+        << "radius " << radius;
+  }
+}
+
+TEST(BlobExtractor, DiscIntensityIsItsIntegratedLight) {
+  for (const double radius : {1.5, 2.5, 4.0, 7.0}) {
+    auto img = canvas(48, 48, 12);
+    add_disc(&img, {23.3, 24.6}, radius, 180);
+    const auto out = extract(quantise(img, CV_8U), 1);
+    ASSERT_EQ(out.blobs.size(), 1u);
+    const double light = 180 * M_PI * radius * radius;
+    EXPECT_NEAR(out.blobs[0].intensity, light, 0.02 * light) << "radius " << radius;
+  }
 }
 
 TEST(BlobExtractor, ReportsIntensityPeakAreaAndBackground) {
