@@ -19,8 +19,10 @@
 // each pixel's chroma along the target colour's hue (see ColourTarget).
 //
 // Images: CV_8UC1, CV_16UC1, or CV_8UC3 (BGR; converted to luma unless a
-// colour target is set). The image is only read during a call. The extractor
-// owns reusable scratch memory: not thread-safe, one per thread.
+// colour target is set). The image is only read during a call; results go to
+// a caller-owned BlobExtraction. Positions in pixels, OpenCV convention
+// (integer = pixel centre); intensities in the input's grey levels (blob.hpp).
+// The extractor owns reusable scratch memory: not thread-safe, one per thread.
 #include <memory>
 #include <optional>
 #include <vector>

@@ -6,9 +6,8 @@
 //             or over injective maps of the columns into the rows  (rows > cols).
 //
 // Non-finite entries (infinity, NaN) are forbidden pairs; allowed costs must be
-// finite and below 1e100 in magnitude. When not every row (or
-// column) can be matched, the answer first has the most allowed pairs and then
-// the least cost. Shortest augmenting paths with dual potentials (Kuhn-Munkres,
+// finite and below 1e100 in magnitude. When not every row (or column) can be
+// matched, the answer first has the most allowed pairs and then the least cost. Shortest augmenting paths with dual potentials (Kuhn-Munkres,
 // in the form of Jonker & Volgenant, Computing 38, 1987), O(n^2 m).
 #include <limits>
 #include <vector>
