@@ -1,0 +1,165 @@
+#include "background_histogram.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tetrapulse::blob_internal {
+namespace {
+
+constexpr int kMaxBins = 4096;
+
+int bit_length(unsigned v) {
+  int n = 0;
+  while (v) {
+    ++n;
+    v >>= 1;
+  }
+  return n;
+}
+
+}  // namespace
+
+void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
+  total_ = static_cast<uint32_t>(std::max(0, window.area()));
+  if (image.depth() == CV_8U) {
+    shift_ = 0;
+    quantum_ = 1;
+    used_ = 256;
+    bins_.assign(256, 0);
+    if (window.area() < 16384) {  // small windows: one histogram to clear
+      for (int y = window.y; y < window.y + window.height; ++y) {
+        const uint8_t* p = image.ptr<uint8_t>(y) + window.x;
+        for (int x = 0; x < window.width; ++x) ++bins_[p[x]];
+      }
+      return;
+    }
+    partial_.assign(4 * 256, 0);
+    uint32_t* h = partial_.data();
+    for (int y = window.y; y < window.y + window.height; ++y) {
+      const uint8_t* p = image.ptr<uint8_t>(y) + window.x;
+      int x = 0;
+      for (; x + 4 <= window.width; x += 4) {
+        ++h[p[x]];
+        ++h[256 + p[x + 1]];
+        ++h[512 + p[x + 2]];
+        ++h[768 + p[x + 3]];
+      }
+      for (; x < window.width; ++x) ++h[p[x]];
+    }
+    for (int b = 0; b < 256; ++b) bins_[b] = h[b] + h[256 + b] + h[512 + b] + h[768 + b];
+    return;
+  }
+  // 16-bit: bins as wide as the data's quantum (a 10- or 12-bit sensor shifted
+  // up fills every 64th or 16th value), and wide enough for at most 4096 bins.
+  // Large windows count every value once, then fold; small ones look at their
+  // values twice rather than clear 65536 counters.
+  unsigned top = 0, any_bits = 0;
+  const bool full = window.area() >= 65536;
+  if (full) {
+    full_.assign(65536, 0);
+    for (int y = window.y; y < window.y + window.height; ++y) {
+      const uint16_t* p = image.ptr<uint16_t>(y) + window.x;
+      for (int x = 0; x < window.width; ++x) ++full_[p[x]];
+    }
+    for (unsigned v = 0; v < 65536; ++v) {
+      if (full_[v] == 0) continue;
+      top = v;
+      any_bits |= v;
+    }
+  } else {
+    for (int y = window.y; y < window.y + window.height; ++y) {
+      const uint16_t* p = image.ptr<uint16_t>(y) + window.x;
+      for (int x = 0; x < window.width; ++x) {
+        top = std::max<unsigned>(top, p[x]);
+        any_bits |= p[x];
+      }
+    }
+  }
+  int quantum_shift = 0;
+  while (any_bits != 0 && (any_bits & 1u) == 0) {
+    ++quantum_shift;
+    any_bits >>= 1;
+  }
+  shift_ = std::max(quantum_shift, bit_length(top) - 12);
+  quantum_ = 1 << quantum_shift;
+  used_ = static_cast<int>(top >> shift_) + 1;
+  bins_.assign(static_cast<size_t>(std::min(used_, kMaxBins)), 0);
+  if (full) {
+    for (unsigned v = 0; v <= top; ++v) bins_[v >> shift_] += full_[v];
+    return;
+  }
+  for (int y = window.y; y < window.y + window.height; ++y) {
+    const uint16_t* p = image.ptr<uint16_t>(y) + window.x;
+    for (int x = 0; x < window.width; ++x) ++bins_[p[x] >> shift_];
+  }
+}
+
+BackgroundFit BackgroundHistogram::fit_background() const {
+  BackgroundFit fit;
+  if (total_ == 0) return fit;
+  const int n = used_;
+  int mode = 0;
+  for (int b = 1; b < n; ++b)
+    if (bins_[b] > bins_[mode]) mode = b;
+  // Initial sigma from the full width at half maximum.
+  const double half = bins_[mode] * 0.5;
+  int lo = mode, hi = mode;
+  while (lo > 0 && bins_[lo - 1] >= half) --lo;
+  while (hi + 1 < n && bins_[hi + 1] >= half) ++hi;
+  double mean = mode;
+  double sigma = std::max((hi - lo + 1) / 2.3548, 0.5);
+  // 3-sigma clipping. A normal truncated at +-3 sigma keeps 0.97334 of its
+  // variance; binning adds 1/12 bin^2 (Sheppard).
+  for (int iter = 0; iter < 20; ++iter) {
+    const int a = std::max(0, static_cast<int>(std::floor(mean - 3 * sigma)));
+    const int b = std::min(n - 1, static_cast<int>(std::ceil(mean + 3 * sigma)));
+    double s0 = 0, s1 = 0, s2 = 0;
+    for (int k = a; k <= b; ++k) {
+      const double c = bins_[k];
+      s0 += c;
+      s1 += c * k;
+      s2 += c * double(k) * k;
+    }
+    if (s0 <= 0) break;
+    const double m = s1 / s0;
+    const double var = std::max(0.0, s2 / s0 - m * m - 1.0 / 12.0) / 0.97334;
+    const double sd = std::sqrt(var);
+    const bool settled = std::abs(m - mean) < 1e-3 && std::abs(std::max(sd, 0.5) - sigma) < 1e-3;
+    mean = m;
+    sigma = std::max(sd, 0.5);  // keep the clipping window at least +-1.5 bins wide
+    fit.sigma = sd;
+    if (settled) break;
+  }
+  fit.mean = bin_centre(mean);
+  fit.sigma *= bin_width();
+  return fit;
+}
+
+double BackgroundHistogram::otsu() const {
+  int lo = 0, hi = std::min(used_, static_cast<int>(bins_.size())) - 1;
+  while (lo < hi && bins_[lo] == 0) ++lo;
+  while (hi > lo && bins_[hi] == 0) --hi;
+  double sum_all = 0;
+  for (int b = lo; b <= hi; ++b) sum_all += double(bins_[b]) * b;
+  double w0 = 0, sum0 = 0, best = -1;
+  int best_t = -1;
+  for (int t = lo; t < hi; ++t) {
+    if (bins_[t] == 0) continue;  // an empty bin leaves the split as it was
+    w0 += bins_[t];
+    sum0 += double(bins_[t]) * t;
+    const double w1 = double(total_) - w0;
+    if (w0 <= 0) continue;
+    if (w1 <= 0) break;
+    const double d = sum0 / w0 - (sum_all - sum0) / w1;
+    const double between = w0 * w1 * d * d;
+    if (between > best) {
+      best = between;
+      best_t = t;
+    }
+  }
+  if (best_t < 0) return -1;
+  // Bins 0..best_t are the darker class; the brighter starts at (best_t + 1) << shift.
+  return double((best_t + 1) << shift_) - 0.5;
+}
+
+}  // namespace tetrapulse::blob_internal

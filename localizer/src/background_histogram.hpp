@@ -1,0 +1,48 @@
+#pragma once
+// Internal to BlobExtractor: the grey-level histogram of one window and the
+// two statistics the thresholds come from (background Gaussian, Otsu).
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+namespace tetrapulse::blob_internal {
+
+struct BackgroundFit {
+  double mean = 0;   // grey levels
+  double sigma = 0;  // grey levels (before any floor)
+};
+
+class BackgroundHistogram {
+ public:
+  // Counts the values of `image` (CV_8UC1 or CV_16UC1) inside `window`, which
+  // must lie in the image. 16-bit values share bins (at most 4096) by a shift.
+  void count(const cv::Mat& image, cv::Rect window);
+
+  // Gaussian fitted to the background peak: starts at the histogram's mode with
+  // sigma from its half-maximum width, then re-estimates mean and sigma from
+  // the bins within 3 sigma (truncation and bin-width corrected) until stable.
+  // The foreground, far in one tail, does not enter.
+  BackgroundFit fit_background() const;
+
+  // Otsu's threshold: values above it form the brighter class; -1 when the
+  // window holds a single value.
+  double otsu() const;
+
+  int bin_width() const { return 1 << shift_; }
+  uint32_t total() const { return total_; }
+
+ private:
+  // Mean of the values a bin can hold: multiples of the data's quantum.
+  double bin_centre(double bin) const { return bin * (1 << shift_) + ((1 << shift_) - quantum_) * 0.5; }
+
+  std::vector<uint32_t> bins_;
+  std::vector<uint32_t> partial_;  // 4 interleaved 8-bit histograms (fewer store-to-load stalls)
+  std::vector<uint32_t> full_;     // every 16-bit value (large windows)
+  int used_ = 0;                   // bins in use
+  int shift_ = 0;
+  int quantum_ = 1;  // step between the values the data holds (16-bit data from a 10- or 12-bit sensor)
+  uint32_t total_ = 0;
+};
+
+}  // namespace tetrapulse::blob_internal

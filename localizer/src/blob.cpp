@@ -1,0 +1,38 @@
+#include "tetrapulse/localizer/blob.hpp"
+
+namespace tetrapulse {
+
+const char* blob_origin_name(BlobOrigin origin) {
+  switch (origin) {
+    case BlobOrigin::kThreshold: return "threshold";
+    case BlobOrigin::kDimRecovery: return "dim_recovery";
+    case BlobOrigin::kErosionSplit: return "erosion_split";
+    case BlobOrigin::kCircleFit: return "circle_fit";
+    case BlobOrigin::kMerged: return "merged";
+  }
+  return "?";
+}
+
+const char* reject_reason_name(RejectReason reason) {
+  switch (reason) {
+    case RejectReason::kTooSmall: return "too_small";
+    case RejectReason::kTooLarge: return "too_large";
+    case RejectReason::kNonConvex: return "non_convex";
+    case RejectReason::kEccentric: return "eccentric";
+    case RejectReason::kIsolated: return "isolated";
+    case RejectReason::kMerged: return "merged";
+    case RejectReason::kFaint: return "faint";
+  }
+  return "?";
+}
+
+const char* roi_status_name(RoiStatus status) {
+  switch (status) {
+    case RoiStatus::kDetected: return "detected";
+    case RoiStatus::kAbsent: return "absent";
+    case RoiStatus::kOutsideImage: return "outside_image";
+  }
+  return "?";
+}
+
+}  // namespace tetrapulse

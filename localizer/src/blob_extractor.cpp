@@ -1,0 +1,261 @@
+#include "tetrapulse/localizer/blob_extractor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "blob_window_pass.hpp"
+#include "tetrapulse/localizer/linear_assignment.hpp"
+
+namespace tetrapulse {
+
+using blob_internal::Levels;
+using blob_internal::Region;
+using blob_internal::Window;
+
+namespace {
+
+tl::unexpected<BlobInputError> input_error(std::string message) {
+  return tl::unexpected<BlobInputError>(BlobInputError{std::move(message)});
+}
+
+tl::expected<void, BlobInputError> check_image(const cv::Mat& image, const BlobExtractorConfig& config) {
+  if (image.empty()) return input_error("image: empty");
+  if (image.dims != 2) return input_error(fmt::format("image: {} dimensions, expected 2", image.dims));
+  if (int64_t(image.rows) * image.cols > (int64_t(1) << 30)) {
+    return input_error(fmt::format("image: {}x{} pixels is too large", image.cols, image.rows));
+  }
+  const int type = image.type();
+  if (config.colour && type != CV_8UC3) {
+    return input_error("image: a colour target needs an 8-bit BGR image");
+  }
+  if (type != CV_8UC1 && type != CV_16UC1 && type != CV_8UC3) {
+    return input_error(fmt::format("image: type {} is not supported (8- or 16-bit grey, or 8-bit BGR)",
+                                   cv::typeToString(type)));
+  }
+  return {};
+}
+
+// Pixels whose centres lie in [c - half, c + half] on both axes, inside the image.
+cv::Rect square_window(const Eigen::Vector2d& c, double half, cv::Size size) {
+  if (!c.allFinite() || !std::isfinite(half) || half < 0) return {};
+  const auto clamp = [](double v, int lo, int hi) { return static_cast<int>(std::clamp(v, double(lo), double(hi))); };
+  const int x0 = clamp(std::ceil(c.x() - half), 0, size.width), x1 = clamp(std::floor(c.x() + half), -1, size.width - 1);
+  const int y0 = clamp(std::ceil(c.y() - half), 0, size.height), y1 = clamp(std::floor(c.y() + half), -1, size.height - 1);
+  if (x1 < x0 || y1 < y0) return {};
+  return cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+}
+
+bool in_square(const Eigen::Vector2d& p, const BlobRoi& roi) {
+  return std::abs(p.x() - roi.center.x()) <= roi.radius && std::abs(p.y() - roi.center.y()) <= roi.radius;
+}
+
+struct Aperture {
+  double sum = 0;
+  int pixels = 0;
+  double peak = 0;
+  bool saturated = false;
+};
+
+template <typename T>
+Aperture measure_aperture_typed(const cv::Mat& work, cv::Rect window, const Levels& levels, const Eigen::Vector2d& c,
+                                double radius) {
+  Aperture a;
+  const cv::Rect box = square_window(c, radius, work.size()) & window;
+  const double r2 = radius * radius;
+  a.peak = -std::numeric_limits<double>::infinity();
+  for (int y = box.y; y < box.y + box.height; ++y) {
+    const T* row = work.ptr<T>(y);
+    for (int x = box.x; x < box.x + box.width; ++x) {
+      if ((x - c.x()) * (x - c.x()) + (y - c.y()) * (y - c.y()) > r2) continue;
+      const double v = row[x];
+      a.sum += v - levels.background;
+      ++a.pixels;
+      a.peak = std::max(a.peak, v - levels.background);
+      a.saturated = a.saturated || v >= levels.saturation;
+    }
+  }
+  if (a.pixels == 0) a.peak = 0;
+  return a;
+}
+
+Aperture measure_aperture(const cv::Mat& work, cv::Rect window, const Levels& levels, const Eigen::Vector2d& c,
+                          double radius) {
+  return work.depth() == CV_8U ? measure_aperture_typed<uint8_t>(work, window, levels, c, radius)
+                               : measure_aperture_typed<uint16_t>(work, window, levels, c, radius);
+}
+
+}  // namespace
+
+namespace blob_internal {
+
+// Scratch memory kept between calls, and the ROI mode's own steps.
+class ExtractorScratch {
+ public:
+  explicit ExtractorScratch(const BlobExtractorConfig& config) : pass(config) {}
+
+  // Windows of the ROIs (empty when outside the image), gathered into groups
+  // whose windows overlap, grown until the groups' windows are disjoint.
+  void group_windows(const std::vector<BlobRoi>& rois, cv::Size size) {
+    roi_windows.resize(rois.size());
+    for (size_t i = 0; i < rois.size(); ++i) {
+      const double half = std::max(rois[i].radius, 0.0) + std::max(rois[i].aperture_radius, 0.0);
+      roi_windows[i] = square_window(rois[i].center, half, size);
+    }
+    group_of.assign(rois.size(), -1);
+    groups.clear();
+    for (size_t i = 0; i < rois.size(); ++i) {
+      if (roi_windows[i].empty()) continue;
+      group_of[i] = static_cast<int>(groups.size());
+      groups.push_back(roi_windows[i]);
+    }
+    for (bool merged = true; merged;) {
+      merged = false;
+      for (size_t a = 0; a < groups.size() && !merged; ++a)
+        for (size_t b = a + 1; b < groups.size() && !merged; ++b) {
+          if ((groups[a] & groups[b]).empty()) continue;
+          groups[a] |= groups[b];
+          groups.erase(groups.begin() + std::ptrdiff_t(b));
+          for (int& g : group_of) {
+            if (g == int(b)) g = int(a);
+            else if (g > int(b)) --g;
+          }
+          merged = true;
+        }
+    }
+  }
+
+  // Accepted blobs whose centroid lies in the square of a ROI of `members`.
+  int claimed(const std::vector<BlobRoi>& rois) {
+    int count = 0;
+    for (const Region& r : pass.regions()) {
+      if (!r.accepted) continue;
+      count += std::any_of(members.begin(), members.end(),
+                           [&](int i) { return in_square(r.blob.centroid, rois[size_t(i)]); });
+    }
+    return count;
+  }
+
+  // The group's ROIs take its blobs by a globally optimal assignment (least
+  // squared distance, centroid inside the ROI's square); each ROI's
+  // measurement is filled, and the blobs no ROI took go to out->blobs.
+  void answer(const std::vector<BlobRoi>& rois, const Window& w, BlobExtraction* out) {
+    std::vector<Region>& regions = pass.regions();
+    group_blobs.clear();
+    for (size_t k = 0; k < regions.size(); ++k)
+      if (regions[k].accepted) group_blobs.push_back(k);
+    const int rows = static_cast<int>(members.size()), cols = static_cast<int>(group_blobs.size());
+    cost.assign(size_t(rows) * cols, LinearAssignment::kForbidden);
+    for (int r = 0; r < rows; ++r) {
+      const BlobRoi& roi = rois[size_t(members[size_t(r)])];
+      for (int c = 0; c < cols; ++c) {
+        const Eigen::Vector2d& p = regions[group_blobs[size_t(c)]].blob.centroid;
+        if (in_square(p, roi)) cost[size_t(r) * cols + c] = (p - roi.center).squaredNorm();
+      }
+    }
+    assignment.solve(cost.data(), rows, cols, &assigned);
+    for (int r = 0; r < rows; ++r) {
+      const int i = members[size_t(r)];
+      RoiMeasurement& m = out->rois[size_t(i)];
+      m.background = w.levels.reported_background;
+      m.background_sigma = w.levels.sigma;
+      const int c = assigned[size_t(r)];
+      if (c >= 0) {
+        Region& region = regions[group_blobs[size_t(c)]];
+        m.status = RoiStatus::kDetected;
+        m.blob = region.blob;
+        m.position = region.blob.centroid;
+        m.intensity = region.blob.intensity;
+        region.accepted = false;  // taken: not an unassigned blob
+      } else {
+        m.status = RoiStatus::kAbsent;
+      }
+      const Aperture a =
+          measure_aperture(*w.work, w.rect, w.levels, m.position, std::max(rois[size_t(i)].aperture_radius, 0.0));
+      m.aperture_intensity = a.sum;
+      m.aperture_pixels = a.pixels;
+      m.aperture_peak = a.peak;
+      m.aperture_saturated = a.saturated;
+      if (c < 0) m.intensity = a.sum;
+    }
+    for (const Region& r : regions)
+      if (r.accepted) out->blobs.push_back(r.blob);
+  }
+
+  WindowPass pass;
+  LinearAssignment assignment;
+  std::vector<double> cost;
+  std::vector<int> assigned;
+  std::vector<cv::Rect> roi_windows;
+  std::vector<int> group_of;  // group of each ROI; -1: outside the image
+  std::vector<cv::Rect> groups;
+  std::vector<int> members;  // ROIs of the group being processed
+  std::vector<size_t> group_blobs;
+};
+
+}  // namespace blob_internal
+
+BlobExtractor::BlobExtractor(BlobExtractorConfig config)
+    : config_(config), scratch_(std::make_unique<blob_internal::ExtractorScratch>(config_)) {}
+BlobExtractor::~BlobExtractor() = default;
+BlobExtractor::BlobExtractor(BlobExtractor&&) noexcept = default;
+BlobExtractor& BlobExtractor::operator=(BlobExtractor&&) noexcept = default;
+
+tl::expected<void, BlobInputError> BlobExtractor::extract(const cv::Mat& image, int expected, BlobExtraction* out) {
+  out->clear();
+  if (auto ok = check_image(image, config_); !ok) return ok;
+  blob_internal::WindowPass& pass = scratch_->pass;
+  pass.begin(image.size());
+  const Window w = pass.prepare(image, cv::Rect(0, 0, image.cols, image.rows), out);
+  pass.find(w, w.levels.f1);
+  if (expected > 0) {
+    const int found = pass.accepted();
+    if (found < expected) pass.recover(w, expected - found);
+    // A split can find more markers than were missing.
+    if (pass.accepted() > expected) pass.prune(expected);
+  }
+  for (const Region& r : pass.regions())
+    if (r.accepted) out->blobs.push_back(r.blob);
+  std::sort(out->blobs.begin(), out->blobs.end(), [](const Blob& a, const Blob& b) {
+    return a.centroid.y() < b.centroid.y() || (a.centroid.y() == b.centroid.y() && a.centroid.x() < b.centroid.x());
+  });
+  pass.list_rejected(out);
+  pass.finish();
+  return {};
+}
+
+tl::expected<void, BlobInputError> BlobExtractor::extract(const cv::Mat& image, const std::vector<BlobRoi>& rois,
+                                                          BlobExtraction* out) {
+  out->clear();
+  if (auto ok = check_image(image, config_); !ok) return ok;
+  blob_internal::ExtractorScratch& s = *scratch_;
+  blob_internal::WindowPass& pass = s.pass;
+  pass.begin(image.size());
+  out->rois.resize(rois.size());
+  for (size_t i = 0; i < rois.size(); ++i) {
+    RoiMeasurement& m = out->rois[i];
+    m = RoiMeasurement{};
+    m.tag = rois[i].tag;
+    m.position = rois[i].center;
+  }
+  s.group_windows(rois, image.size());
+  for (size_t g = 0; g < s.groups.size(); ++g) {
+    pass.next_window();
+    s.members.clear();
+    for (size_t i = 0; i < rois.size(); ++i)
+      if (s.group_of[i] == int(g)) s.members.push_back(static_cast<int>(i));
+    const Window w = pass.prepare(image, s.groups[g], out);
+    pass.find(w, w.levels.f1);
+    const int found = s.claimed(rois);
+    if (found < int(s.members.size())) pass.recover(w, int(s.members.size()) - found);
+    s.answer(rois, w, out);
+    pass.list_rejected(out);
+  }
+  pass.finish();
+  return {};
+}
+
+}  // namespace tetrapulse

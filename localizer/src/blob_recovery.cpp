@@ -1,0 +1,214 @@
+#include "blob_recovery.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tetrapulse::blob_internal {
+namespace {
+
+constexpr int kMaxCropSide = 256;  // larger regions are not worth a split (and would be slow)
+
+// 8-connected components of `mask` (w x h); labels 1..n in `parts`. Returns n.
+int label_parts(const std::vector<uint8_t>& mask, int w, int h, std::vector<int32_t>* parts, std::vector<int>* queue) {
+  parts->assign(mask.size(), 0);
+  int count = 0;
+  for (int start = 0; start < w * h; ++start) {
+    if (!mask[size_t(start)] || (*parts)[size_t(start)]) continue;
+    ++count;
+    queue->clear();
+    queue->push_back(start);
+    (*parts)[size_t(start)] = count;
+    for (size_t head = 0; head < queue->size(); ++head) {
+      const int i = (*queue)[head], y = i / w, x = i - y * w;
+      for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, h - 1); ++ny)
+        for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, w - 1); ++nx) {
+          const int n = ny * w + nx;
+          if (!mask[size_t(n)] || (*parts)[size_t(n)]) continue;
+          (*parts)[size_t(n)] = count;
+          queue->push_back(n);
+        }
+    }
+  }
+  return count;
+}
+
+}  // namespace
+
+int BlobRecovery::split_by_erosion(const cv::Mat& work, cv::Rect window, const Levels& levels,
+                                   const BlobExtractorConfig& config, RegionGrower* grower, size_t index,
+                                   std::vector<Region>* regions) {
+  const Region original = (*regions)[index];
+  const cv::Rect box = original.sums.bbox;
+  if (box.width > kMaxCropSide || box.height > kMaxCropSide || original.end <= original.begin) return 0;
+  // The crop has a one-pixel empty frame, so erosion needs no bounds checks.
+  const int w = box.width + 2, h = box.height + 2, ox = box.x - 1, oy = box.y - 1;
+  const int width = grower->width();
+  mask_.assign(size_t(w) * h, 0);
+  for (int i = original.begin; i < original.end; ++i) {
+    const int p = grower->pixels()[size_t(i)], y = p / width, x = p - y * width;
+    mask_[size_t(y - oy) * w + (x - ox)] = 1;
+  }
+  eroded_ = mask_;
+  for (int step = 0; step < config.max_erosions; ++step) {
+    next_.assign(eroded_.size(), 0);
+    for (int y = 1; y + 1 < h; ++y)
+      for (int x = 1; x + 1 < w; ++x) {
+        const size_t i = size_t(y) * w + x;
+        next_[i] = eroded_[i] && eroded_[i - 1] && eroded_[i + 1] && eroded_[i - w] && eroded_[i + w];
+      }
+    eroded_.swap(next_);
+    const int count = label_parts(eroded_, w, h, &parts_, &queue_);
+    if (count == 0) return 0;
+    if (count < 2) continue;
+
+    // Grow the parts back over the original mask, all at once, layer by layer.
+    queue_.clear();
+    for (int i = 0; i < w * h; ++i)
+      if (parts_[size_t(i)]) queue_.push_back(i);
+    for (size_t head = 0; head < queue_.size(); ++head) {
+      const int i = queue_[head], y = i / w, x = i - y * w;
+      for (int ny = y - 1; ny <= y + 1; ++ny)
+        for (int nx = x - 1; nx <= x + 1; ++nx) {
+          const int n = ny * w + nx;
+          if (!mask_[size_t(n)] || parts_[size_t(n)]) continue;
+          parts_[size_t(n)] = parts_[size_t(i)];
+          queue_.push_back(n);
+        }
+    }
+
+    const size_t first = regions->size();
+    for (int part = 1; part <= count; ++part) {
+      Region r;
+      r.label = grower->new_label();
+      r.begin = static_cast<int>(grower->pixels().size());
+      for (int i = 0; i < w * h; ++i) {
+        if (parts_[size_t(i)] != part) continue;
+        const int y = i / w, x = i - y * w;
+        const int p = (y + oy) * width + (x + ox);
+        grower->set_label(p, r.label);
+        grower->pixels().push_back(p);
+        r.box |= cv::Rect(x + ox, y + oy, 1, 1);
+      }
+      r.end = static_cast<int>(grower->pixels().size());
+      regions->push_back(r);
+    }
+    int accepted = 0;
+    for (size_t k = first; k < regions->size(); ++k) {
+      Region& r = (*regions)[k];
+      grower->measure(work, window, levels, &r);
+      classify(config, &r);
+      r.blob.origin = BlobOrigin::kErosionSplit;
+      r.quiet = !r.accepted;  // a crumb of a split is not a candidate of its own
+      accepted += r.accepted;
+    }
+    if (accepted >= 2) {
+      (*regions)[index].recovered = true;
+      return accepted;
+    }
+    // Not two markers: give the pixels back and forget the parts.
+    for (size_t k = first; k < regions->size(); ++k) {
+      const Region& r = (*regions)[k];
+      for (int i = r.begin; i < r.end; ++i) grower->set_label(grower->pixels()[size_t(i)], original.label);
+    }
+    regions->resize(first);
+    return 0;
+  }
+  return 0;
+}
+
+template <typename T>
+void BlobRecovery::collect_rim(const cv::Mat& work, cv::Rect window, double level, const RegionGrower& grower,
+                               const Region& region) {
+  const int width = grower.width();
+  const int x0 = window.x, x1 = window.x + window.width - 1, y0 = window.y, y1 = window.y + window.height - 1;
+  static constexpr int kDx[4] = {1, -1, 0, 0}, kDy[4] = {0, 0, 1, -1};
+  rim_.clear();
+  bright_.clear();
+  for (int i = region.begin; i < region.end; ++i) {
+    const int p = grower.pixels()[size_t(i)], y = p / width, x = p - y * width;
+    const double v = work.ptr<T>(y)[x];
+    if (v < level) continue;
+    bright_.emplace_back(x, y);
+    for (int d = 0; d < 4; ++d) {
+      const int nx = x + kDx[d], ny = y + kDy[d];
+      if (nx < x0 || nx > x1 || ny < y0 || ny > y1) continue;  // cut by the window: not rim
+      const double u = work.ptr<T>(ny)[nx];
+      if (u >= level) continue;
+      const double t = (v - level) / (v - u);
+      rim_.emplace_back(x + t * kDx[d], y + t * kDy[d]);
+    }
+  }
+}
+
+Circle BlobRecovery::trim_arc_ends(const Circle& circle) {
+  // Rim pixels next to the cut are partly cut too, so the arc's last points
+  // lie inside the circle. Where the supporting points leave a gap (a cut arc),
+  // those within 1.5 px of either end are dropped and the circle refitted.
+  arc_.clear();
+  for (size_t i = 0; i < rim_.size(); ++i) {
+    if (!inliers_[i]) continue;
+    const Eigen::Vector2d d = rim_[i] - circle.center;
+    arc_.push_back({std::atan2(d.y(), d.x()), rim_[i]});
+  }
+  if (arc_.size() < 8) return circle;
+  std::sort(arc_.begin(), arc_.end(), [](const ArcPoint& a, const ArcPoint& b) { return a.angle < b.angle; });
+  size_t after_gap = 0;
+  double gap = arc_.front().angle + 2 * M_PI - arc_.back().angle;
+  for (size_t i = 1; i < arc_.size(); ++i) {
+    if (arc_[i].angle - arc_[i - 1].angle > gap) {
+      gap = arc_[i].angle - arc_[i - 1].angle;
+      after_gap = i;
+    }
+  }
+  if (gap < M_PI / 4) return circle;  // a whole circle: no ends
+  const double start = arc_[after_gap].angle;
+  const double end = arc_[(after_gap + arc_.size() - 1) % arc_.size()].angle;
+  const double trim = 1.5 / circle.radius;  // radians
+  trimmed_.clear();
+  for (const ArcPoint& a : arc_) {
+    const double from_start = std::remainder(a.angle - start, 2 * M_PI);
+    const double to_end = std::remainder(end - a.angle, 2 * M_PI);
+    if (std::abs(from_start) > trim && std::abs(to_end) > trim) trimmed_.push_back(a.point);
+  }
+  if (trimmed_.size() < 6) return circle;
+  return fit_circle_geometric(trimmed_.data(), trimmed_.size(), circle).value_or(circle);
+}
+
+bool BlobRecovery::fit_circle(const cv::Mat& work, cv::Rect window, const Levels& levels,
+                              const BlobExtractorConfig& config, const RegionGrower& grower, Region* region) {
+  const double level = levels.background + 0.5 * region->sums.peak;
+  if (work.depth() == CV_8U) {
+    collect_rim<uint8_t>(work, window, level, grower, *region);
+  } else {
+    collect_rim<uint16_t>(work, window, level, grower, *region);
+  }
+  RobustCircleOptions options;
+  options.inlier_tolerance = config.circle_inlier_px;
+  options.trials = config.circle_trials;
+  options.min_radius = 1.0;
+  options.max_radius = 1.5 * std::sqrt(std::max(config.max_area, 1) / M_PI);
+  const auto fit = fit_circle_robust(rim_.data(), rim_.size(), options, &inliers_);
+  if (!fit) return false;
+  const Circle c = trim_arc_ends(fit->circle);
+  // A digital circle of radius r crosses about 8 r pixel edges.
+  const bool supported = fit->inliers >= std::max(8.0, 0.4 * 8.0 * c.radius);
+  // The pixels above the rim level must lie in the disc: a circle on one lobe
+  // of a larger blob does not describe the blob.
+  const double reach = c.radius + 0.75;
+  const auto inside = std::count_if(bright_.begin(), bright_.end(), [&](const Eigen::Vector2d& p) {
+    return (p - c.center).squaredNorm() <= reach * reach;
+  });
+  const bool holds_region = double(inside) >= 0.95 * double(bright_.size());
+  const cv::Rect& box = region->sums.bbox;
+  const bool near = c.center.x() >= box.x - c.radius && c.center.x() <= box.x + box.width + c.radius &&
+                    c.center.y() >= box.y - c.radius && c.center.y() <= box.y + box.height + c.radius;
+  if (!supported || !holds_region || !near) return false;
+  region->blob.centroid = c.center;
+  region->blob.radius = c.radius;
+  region->blob.origin = BlobOrigin::kCircleFit;
+  region->accepted = true;
+  region->recovered = region->rejected;
+  return true;
+}
+
+}  // namespace tetrapulse::blob_internal

@@ -1,0 +1,58 @@
+#pragma once
+// Internal to BlobExtractor: the recovery steps that turn a rejected region
+// into markers (paper Sec. IV-B: "a cascade of recovery methods with
+// increasing complexity", and chord bisectors / circles for shadowed blobs).
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "blob_regions.hpp"
+#include "tetrapulse/localizer/circle_fit.hpp"
+
+namespace tetrapulse::blob_internal {
+
+class BlobRecovery {
+ public:
+  // Erodes regions[index]'s mask (4-neighbour, up to config.max_erosions times)
+  // until it falls into two or more parts, grows the parts back over the
+  // original mask (breadth-first, so each pixel joins the part that reaches it
+  // first), and measures them. Succeeds when at least two parts pass the
+  // tests: they are appended to `regions` (origin kErosionSplit) and the
+  // original is marked recovered. Returns the number of parts accepted.
+  int split_by_erosion(const cv::Mat& work, cv::Rect window, const Levels& levels, const BlobExtractorConfig& config,
+                       RegionGrower* grower, size_t index, std::vector<Region>* regions);
+
+  // Fits a circle to the rim of `region`: the points where the value crosses
+  // half the region's peak between one of its pixels and a 4-neighbour
+  // (linear interpolation; a disc's edge or a spot's half-maximum contour),
+  // leaving out the window's border (a cut, not rim). RANSAC, Kasa's and the
+  // geometric fit, then the ends of a cut arc trimmed and the circle refitted.
+  // A circle supported along at least 40 % of its circumference, whose disc
+  // holds the region's pixels above that level, replaces the centroid (origin kCircleFit), sets the
+  // radius and accepts the region.
+  bool fit_circle(const cv::Mat& work, cv::Rect window, const Levels& levels, const BlobExtractorConfig& config,
+                  const RegionGrower& grower, Region* region);
+
+ private:
+  template <typename T>
+  void collect_rim(const cv::Mat& work, cv::Rect window, double level, const RegionGrower& grower,
+                   const Region& region);
+
+  std::vector<uint8_t> mask_, eroded_, next_;
+  std::vector<int32_t> parts_;
+  std::vector<int> queue_;
+  Circle trim_arc_ends(const Circle& circle);
+
+  struct ArcPoint {
+    double angle;
+    Eigen::Vector2d point;
+  };
+  std::vector<Eigen::Vector2d> rim_;
+  std::vector<ArcPoint> arc_;
+  std::vector<Eigen::Vector2d> trimmed_;
+  std::vector<Eigen::Vector2d> bright_;  // centres of the region's pixels above the rim level
+  std::vector<uint8_t> inliers_;
+};
+
+}  // namespace tetrapulse::blob_internal

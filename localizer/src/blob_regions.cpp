@@ -1,0 +1,300 @@
+#include "blob_regions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <opencv2/core.hpp>
+
+namespace tetrapulse::blob_internal {
+namespace {
+
+// Smallest integer value v with v > level, clamped to what an int holds.
+int above(double level) {
+  if (!(level < 1e9)) return std::numeric_limits<int>::max();
+  if (level < -1e9) return std::numeric_limits<int>::min();
+  return static_cast<int>(std::floor(level)) + 1;
+}
+
+double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+// Area of the convex hull of `p`, sorted lexicographically (Andrew's monotone chain).
+double convex_hull_area(const std::vector<Eigen::Vector2d>& p, std::vector<Eigen::Vector2d>* hull) {
+  if (p.size() < 3) return 0.0;
+  hull->resize(2 * p.size());
+  auto& h = *hull;
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {  // one side
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {  // the other
+    while (k >= lower && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  double twice = 0;
+  for (size_t i = 0; i + 1 < k; ++i) twice += h[i].x() * h[i + 1].y() - h[i + 1].x() * h[i].y();
+  return 0.5 * std::abs(twice);
+}
+
+}  // namespace
+
+void RegionSums::merge(const RegionSums& o) {
+  area += o.area;
+  sx += o.sx;
+  sy += o.sy;
+  sxx += o.sxx;
+  sxy += o.sxy;
+  syy += o.syy;
+  w += o.w;
+  wx += o.wx;
+  wy += o.wy;
+  peak = std::max(peak, o.peak);
+  hull_area += o.hull_area;  // not the hull of the union: merged blobs keep their own convexity
+  saturated = saturated || o.saturated;
+  clipped = clipped || o.clipped;
+  bbox = bbox | o.bbox;
+}
+
+Blob RegionSums::blob() const {
+  Blob b;
+  b.area = area;
+  b.bbox = bbox;
+  b.peak = peak;
+  b.saturated = saturated;
+  b.clipped = clipped;
+  b.intensity = w;
+  if (area <= 0) return b;
+  const double n = area;
+  const Eigen::Vector2d mean(sx / n, sy / n);
+  b.centroid = w > 0 ? Eigen::Vector2d(wx / w, wy / w) : mean;
+  b.radius = std::sqrt(n / M_PI);
+  // Second moments of the pixel squares (a pixel adds 1/12 on each axis).
+  const double cxx = std::max(0.0, sxx / n - mean.x() * mean.x()) + 1.0 / 12.0;
+  const double cyy = std::max(0.0, syy / n - mean.y() * mean.y()) + 1.0 / 12.0;
+  const double cxy = sxy / n - mean.x() * mean.y();
+  const double half_sum = 0.5 * (cxx + cyy);
+  const double root = std::sqrt(0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy);
+  const double big = half_sum + root, small = std::max(0.0, half_sum - root);
+  b.eccentricity = big > 0 ? std::sqrt(std::max(0.0, 1.0 - small / big)) : 0.0;
+  b.convexity = hull_area > 0 ? std::min(1.0, n / hull_area) : 1.0;
+  return b;
+}
+
+void classify(const BlobExtractorConfig& config, Region* region) {
+  const Blob& b = region->blob;
+  const bool judge_shape = b.area >= config.min_shape_area;
+  region->accepted = false;
+  region->rejected = true;
+  if (b.area < config.min_area) {
+    region->reason = RejectReason::kTooSmall;
+    region->reason_value = b.area;
+  } else if (b.area > config.max_area) {
+    region->reason = RejectReason::kTooLarge;
+    region->reason_value = b.area;
+  } else if (judge_shape && b.convexity < config.min_convexity) {
+    region->reason = RejectReason::kNonConvex;
+    region->reason_value = b.convexity;
+  } else if (judge_shape && b.eccentricity > config.max_eccentricity) {
+    region->reason = RejectReason::kEccentric;
+    region->reason_value = b.eccentricity;
+  } else {
+    region->accepted = true;
+    region->rejected = false;
+  }
+}
+
+void RegionGrower::reset(cv::Size size) {
+  if (size != size_) {
+    size_ = size;
+    labels_.assign(size_t(std::max(0, size.area())), 0);
+  } else {
+    clear();
+  }
+  pixels_.clear();
+  next_label_ = 1;
+}
+
+void RegionGrower::clear() {
+  for (const int32_t index : pixels_) labels_[size_t(index)] = 0;
+  pixels_.clear();
+}
+
+void RegionGrower::grow(const cv::Mat& work, cv::Rect window, const Levels& levels, double seed_level,
+                        std::vector<Region>* regions) {
+  const int seed_min = above(std::max(seed_level, levels.f2));
+  const int keep_min = above(levels.f2);
+  const int top = work.depth() == CV_8U ? 255 : 65535;
+  if (seed_min > top || window.area() <= 0) return;
+  // Large windows: find the rows' seeds with a vectorised comparison first.
+  const bool masked = window.area() >= 4096;
+  if (masked) {
+    if (seed_mask_.size() != work.size()) seed_mask_.create(work.size(), CV_8U);
+    cv::Mat dst = seed_mask_(window);
+    cv::compare(work(window), cv::Scalar(std::max(seed_min, 0)), dst, cv::CMP_GE);
+  }
+  if (work.depth() == CV_8U) {
+    grow_typed<uint8_t>(work, window, seed_min, keep_min, masked, regions);
+  } else {
+    grow_typed<uint16_t>(work, window, seed_min, keep_min, masked, regions);
+  }
+}
+
+template <typename T>
+void RegionGrower::grow_typed(const cv::Mat& work, cv::Rect window, int seed_min, int keep_min, bool masked,
+                              std::vector<Region>* regions) {
+  const int width = size_.width;
+  const int x0 = window.x, x1 = window.x + window.width;
+  const int y0 = window.y, y1 = window.y + window.height;
+  for (int y = y0; y < y1; ++y) {
+    const T* row = work.ptr<T>(y);
+    const uint8_t* seeds = masked ? seed_mask_.ptr<uint8_t>(y) : nullptr;
+    const int32_t* labels = labels_.data() + size_t(y) * width;
+    for (int x = x0; x < x1; ++x) {
+      if (masked) {
+        // Skip 8 seedless pixels at a time.
+        while (x + 8 <= x1) {
+          uint64_t word;
+          std::memcpy(&word, seeds + x, sizeof word);
+          if (word != 0) break;
+          x += 8;
+        }
+        if (x >= x1) break;
+        if (!seeds[x]) continue;
+      }
+      if (row[x] < seed_min || labels[x] != 0) continue;
+      grow_from<T>(work, window, y * width + x, keep_min, regions);
+    }
+  }
+}
+
+template <typename T>
+void RegionGrower::grow_from(const cv::Mat& work, cv::Rect window, int seed, int keep_min,
+                             std::vector<Region>* regions) {
+  const int width = size_.width;
+  const int x0 = window.x, x1 = window.x + window.width;
+  const int y0 = window.y, y1 = window.y + window.height;
+  Region region;
+  region.label = next_label_++;
+  region.begin = static_cast<int>(pixels_.size());
+  const int sy = seed / width, sx = seed - sy * width;
+  int min_x = sx, max_x = sx, min_y = sy, max_y = sy;
+  labels_[size_t(seed)] = region.label;
+  pixels_.push_back(seed);
+  queue_.clear();
+  queue_.push_back({sx, sy});
+  // Breadth-first; the queue keeps coordinates so that no pixel needs a division.
+  for (size_t head = 0; head < queue_.size(); ++head) {
+    const auto [px, py] = queue_[head];
+    for (int ny = std::max(py - 1, y0); ny <= std::min(py + 1, y1 - 1); ++ny) {
+      const T* nrow = work.ptr<T>(ny);
+      int32_t* nlabels = labels_.data() + size_t(ny) * width;
+      for (int nx = std::max(px - 1, x0); nx <= std::min(px + 1, x1 - 1); ++nx) {
+        if (nlabels[nx] != 0 || nrow[nx] < keep_min) continue;
+        nlabels[nx] = region.label;
+        pixels_.push_back(ny * width + nx);
+        queue_.push_back({nx, ny});
+        min_x = std::min(min_x, nx);
+        max_x = std::max(max_x, nx);
+        min_y = std::min(min_y, ny);
+        max_y = std::max(max_y, ny);
+      }
+    }
+  }
+  region.box = cv::Rect(min_x, min_y, max_x - min_x + 1, max_y - min_y + 1);
+  region.end = static_cast<int>(pixels_.size());
+  regions->push_back(region);
+}
+
+void RegionGrower::measure(const cv::Mat& work, cv::Rect window, const Levels& levels, Region* region) {
+  if (work.depth() == CV_8U) {
+    measure_typed<uint8_t>(work, window, levels, region);
+  } else {
+    measure_typed<uint16_t>(work, window, levels, region);
+  }
+}
+
+template <typename T>
+void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Levels& levels, Region* region) {
+  const int width = size_.width;
+  const double bg = levels.background;
+  const int32_t label = region->label;
+  RegionSums s;
+  if (region->end <= region->begin || region->box.empty()) {
+    region->sums = s;
+    region->blob = s.blob();
+    return;
+  }
+  const int min_x = region->box.x, max_x = region->box.x + region->box.width - 1;
+  const int min_y = region->box.y, max_y = region->box.y + region->box.height - 1;
+  s.bbox = cv::Rect(min_x, min_y, max_x - min_x + 1, max_y - min_y + 1);
+  s.clipped = min_x == window.x || min_y == window.y || max_x == window.x + window.width - 1 ||
+              max_y == window.y + window.height - 1;
+  const int rows = s.bbox.height;
+  row_min_.assign(size_t(rows), std::numeric_limits<int>::max());
+  row_max_.assign(size_t(rows), -1);
+  s.peak = -std::numeric_limits<double>::infinity();
+
+  // One sweep of the box and a pixel around it: the region's pixels, and the
+  // ring of unlabelled pixels touching it (they hold the spot's faint tail).
+  const int wx0 = window.x, wx1 = window.x + window.width - 1, wy0 = window.y, wy1 = window.y + window.height - 1;
+  const int x0 = std::max(min_x - 1, wx0), x1 = std::min(max_x + 1, wx1);
+  for (int y = std::max(min_y - 1, wy0); y <= std::min(max_y + 1, wy1); ++y) {
+    const T* row = work.ptr<T>(y);
+    const int32_t* here = labels_.data() + size_t(y) * width;
+    const int32_t* up = y > wy0 ? here - width : nullptr;
+    const int32_t* down = y < wy1 ? here + width : nullptr;
+    for (int x = x0; x <= x1; ++x) {
+      const int32_t l = here[x];
+      const double v = row[x];
+      const double d = v - bg;
+      if (l == label) {
+        ++s.area;
+        s.sx += x;
+        s.sy += y;
+        s.sxx += double(x) * x;
+        s.sxy += double(x) * y;
+        s.syy += double(y) * y;
+        s.w += d;
+        s.wx += d * x;
+        s.wy += d * y;
+        s.peak = std::max(s.peak, d);
+        s.saturated = s.saturated || v >= levels.saturation;
+        const size_t r = size_t(y - min_y);
+        row_min_[r] = std::min(row_min_[r], x);
+        row_max_[r] = std::max(row_max_[r], x);
+        continue;
+      }
+      if (l != 0 || d <= 0) continue;
+      const int a = std::max(x - 1, wx0), b = std::min(x + 1, wx1);
+      bool touches = false;
+      for (int nx = a; nx <= b && !touches; ++nx)
+        touches = here[nx] == label || (up && up[nx] == label) || (down && down[nx] == label);
+      if (!touches) continue;
+      s.w += d;
+      s.wx += d * x;
+      s.wy += d * y;
+    }
+  }
+
+  // The hull of the pixel squares needs, at each horizontal pixel edge, only
+  // the leftmost and rightmost corner there. Stored as (y, x): sorted already,
+  // and a mirror image has the same area.
+  hull_points_.clear();
+  for (int r = 0; r <= rows; ++r) {
+    const size_t above = size_t(std::max(r - 1, 0)), below = size_t(std::min(r, rows - 1));
+    const double left = std::min(row_min_[above], row_min_[below]) - 0.5;
+    const double right = std::max(row_max_[above], row_max_[below]) + 0.5;
+    const double y = min_y + r - 0.5;
+    hull_points_.emplace_back(y, left);
+    hull_points_.emplace_back(y, right);
+  }
+  s.hull_area = convex_hull_area(hull_points_, &hull_);
+  region->sums = s;
+  region->blob = s.blob();
+}
+
+}  // namespace tetrapulse::blob_internal

@@ -1,0 +1,67 @@
+#pragma once
+// Internal to BlobExtractor: the steps both modes run over one window (the
+// whole image, or a group of overlapping ROIs), with the scratch memory they
+// keep between calls.
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "background_histogram.hpp"
+#include "blob_recovery.hpp"
+#include "blob_regions.hpp"
+#include "blob_working_image.hpp"
+#include "tetrapulse/localizer/blob_extractor.hpp"
+
+namespace tetrapulse::blob_internal {
+
+// One window: its rectangle, its working image and its levels.
+struct Window {
+  cv::Rect rect;
+  const cv::Mat* work = nullptr;
+  Levels levels;
+};
+
+class WindowPass {
+ public:
+  explicit WindowPass(const BlobExtractorConfig& config) : config_(config) {}
+
+  // Starts a call on an image of `size`; finish() unlabels what it labelled.
+  void begin(cv::Size size) {
+    grower_.reset(size);
+    regions_.clear();
+  }
+  void finish() { grower_.clear(); }
+
+  // Working image, histogram and thresholds of `rect`; appends them to out->windows.
+  Window prepare(const cv::Mat& image, cv::Rect rect, BlobExtraction* out);
+  // Grows, measures and tests the regions seeded above `seed_level`; returns
+  // the index of the first new one.
+  size_t find(const Window& w, double seed_level);
+  int accepted() const;
+  // More blobs than expected: merge nearly touching pairs, drop isolated ones.
+  void prune(int expected);
+  // Fewer blobs than expected: the cascade, cheapest first (dim markers,
+  // erosion, circle fit); stops once `missing` are found.
+  void recover(const Window& w, int missing);
+  // Appends the rejected regions (up to config.max_rejected_kept in all).
+  void list_rejected(BlobExtraction* out) const;
+
+  std::vector<Region>& regions() { return regions_; }
+  // Forgets the regions of the previous window (their labels stay until finish()).
+  void next_window() { regions_.clear(); }
+
+ private:
+  void measure(const Window& w, Region* r);
+  static void reject(Region* r, RejectReason reason, double value);
+
+  BlobExtractorConfig config_;
+  WorkingImage working_;
+  BackgroundHistogram histogram_;
+  RegionGrower grower_;
+  BlobRecovery recovery_;
+  std::vector<Region> regions_;
+  std::vector<size_t> order_;
+  std::vector<double> nearest_;
+};
+
+}  // namespace tetrapulse::blob_internal
