@@ -43,7 +43,7 @@ DatasetResult<SimulationSummary> simulate_dataset(const Scenario& scenario, cons
   const int64_t count = options.frames.value_or(options.ci ? fs.ci_count : fs.count);
 
   const Scene scene = build_scene(scenario, summary.seed);
-  const SensorModel sensor(scenario.camera.width, scenario.camera.height, scenario.sensor, summary.seed);
+  SensorModel sensor(scenario.camera.width, scenario.camera.height, scenario.sensor, summary.seed);
   FrameRenderer renderer(scene, scenario.render, sensor);
 
   auto writer = RigDatasetWriter::create(options.out, scenario.camera, scenario.targets);

@@ -15,7 +15,7 @@ namespace {
 constexpr double kFieldMarginRad = 2.0 * M_PI / 180.0;
 }  // namespace
 
-FrameRenderer::FrameRenderer(const Scene& scene, const RenderSettings& settings, const SensorModel& sensor)
+FrameRenderer::FrameRenderer(const Scene& scene, const RenderSettings& settings, SensorModel& sensor)
     : scene_(scene), settings_(settings), sensor_(sensor) {
   for (int s = std::max(1, settings.min_oversampling); s <= 32; s *= 2) responses_.emplace_back(settings.psf_sigma_px, s);
   const CameraModel& cam = scene_.camera;

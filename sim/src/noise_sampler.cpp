@@ -25,14 +25,11 @@ double inverse_normal_cdf(double p) {
 
 namespace {
 
-constexpr int kCellBits = 12;
-constexpr int kCells = 1 << kCellBits;
-
 // table[i] = Phi^-1(i / kCells), i = 1 .. kCells - 1.
-const std::array<double, kCells>& quantile_table() {
-  static const std::array<double, kCells> table = [] {
-    std::array<double, kCells> t{};
-    for (int i = 1; i < kCells; ++i) t[static_cast<size_t>(i)] = inverse_normal_cdf(static_cast<double>(i) / kCells);
+const std::array<double, NoiseSampler::kCells>& quantile_table() {
+  static const std::array<double, NoiseSampler::kCells> table = [] {
+    std::array<double, NoiseSampler::kCells> t{};
+    for (uint32_t i = 1; i < NoiseSampler::kCells; ++i) t[i] = inverse_normal_cdf(static_cast<double>(i) / NoiseSampler::kCells);
     return t;
   }();
   return table;
@@ -40,15 +37,10 @@ const std::array<double, kCells>& quantile_table() {
 
 }  // namespace
 
-double NoiseSampler::normal() {
-  const auto& table = quantile_table();
-  const auto u = static_cast<uint32_t>(rng_.next() >> 32);
-  const uint32_t cell = u >> (32 - kCellBits);
-  if (cell == 0 || cell == kCells - 1) return inverse_normal_cdf((static_cast<double>(u) + 0.5) * 0x1.0p-32);
-  const double frac = (static_cast<double>(u & ((1u << (32 - kCellBits)) - 1)) + 0.5) * 0x1.0p-20;
-  const double a = table[cell], b = table[cell + 1];
-  return a + frac * (b - a);
-}
+NoiseSampler::NoiseSampler(uint64_t seed) : rng_(seed), table_(quantile_table().data()) {}
+
+// The two outermost cells, where the quantile is too steep to interpolate: exactly.
+double NoiseSampler::tail(uint32_t u) { return inverse_normal_cdf((static_cast<double>(u) + 0.5) * 0x1.0p-32); }
 
 int NoiseSampler::poisson(double mean) {
   if (!(mean > 0)) return 0;

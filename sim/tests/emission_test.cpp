@@ -168,7 +168,7 @@ TEST(FrameRenderer, ExposureStraddlingABitEdgeMixesBothLevels) {
   light.radius_m = 0.015;
   light.radiance_e_per_ms = 100;
   scene.lights.push_back(light);
-  const SensorModel sensor(info.width, info.height, SensorConfig{}, 1);
+  SensorModel sensor(info.width, info.height, SensorConfig{}, 1);
   FrameRenderer renderer(scene, RenderSettings{}, sensor);
   const auto total = [&](int64_t t0, int64_t exposure) {
     cv::Mat light_e(info.height, info.width, CV_32F, cv::Scalar(0));

@@ -48,7 +48,7 @@ cv::Mat render_sphere(const CameraInfo& info, const Eigen::Vector3d& C, double r
   light.radiance_e_per_ms = 1.0;
   scene.lights.push_back(light);
   // Only the light is read; the sensor is never asked to expose.
-  static const SensorModel sensor(info.width, info.height, SensorConfig{}, 1);
+  static SensorModel sensor(info.width, info.height, SensorConfig{}, 1);
   RenderSettings settings;
   settings.psf_sigma_px = psf_sigma;
   FrameRenderer renderer(scene, settings, sensor);

@@ -36,7 +36,7 @@ struct RenderSettings {
 
 class FrameRenderer {
  public:
-  FrameRenderer(const Scene& scene, const RenderSettings& settings, const SensorModel& sensor);
+  FrameRenderer(const Scene& scene, const RenderSettings& settings, SensorModel& sensor);
 
   // Adds the electrons each pixel collects from the spheres to `light_e` (CV_32F, camera-sized).
   void add_light(int64_t t0_ns, int64_t exposure_ns, cv::Mat* light_e);
@@ -53,7 +53,7 @@ class FrameRenderer {
 
   const Scene& scene_;
   RenderSettings settings_;
-  const SensorModel& sensor_;
+  SensorModel& sensor_;
   std::vector<PixelResponse> responses_;  // oversampling 4, 8, 16, 32 (from min_oversampling)
   double max_field_angle_ = 0;  // largest angle from the optical axis that the image shows (rad)
   // Scratch, kept between calls to avoid allocations.

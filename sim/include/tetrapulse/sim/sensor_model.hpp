@@ -40,16 +40,22 @@ class SensorModel {
 
   // Digitizes one exposure of `exposure_ns`. light_e: CV_32F, electrons from the
   // lights per pixel. image: CV_8U or CV_16U (bit_depth). noise_seed: this frame's.
-  void expose(const cv::Mat& light_e, int64_t exposure_ns, uint64_t noise_seed, cv::Mat* image) const;
+  // Not thread-safe: it keeps the dark frame's statistics for the last exposure time.
+  void expose(const cv::Mat& light_e, int64_t exposure_ns, uint64_t noise_seed, cv::Mat* image);
 
  private:
   template <typename Pixel>
   void expose_as(const cv::Mat& light_e, double exposure_ms, uint64_t noise_seed, cv::Mat* image) const;
+  // Mean and noise of each pixel that no light reaches, for one exposure time (most pixels).
+  void prepare_dark_frame(int64_t exposure_ns);
 
   SensorConfig config_;
   cv::Mat gain_;        // CV_32F, g_p
   cv::Mat background_;  // CV_32F, g_p background_e_per_ms (1 + contrast T_p): electrons per ms
   cv::Mat offset_;      // CV_32F, o_p electrons
+  int64_t dark_exposure_ns_ = -1;
+  cv::Mat dark_mean_;   // CV_32F, mu_p without light
+  cv::Mat dark_sd_;     // CV_32F, sqrt(mu_p + read^2), or -1 where the Poisson draw must be exact
 };
 
 }  // namespace tetrapulse::sim
