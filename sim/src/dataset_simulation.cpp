@@ -42,7 +42,7 @@ DatasetResult<SimulationSummary> simulate_dataset(const Scenario& scenario, cons
   const FrameSchedule& fs = scenario.frames;
   const int64_t count = options.frames.value_or(options.ci ? fs.ci_count : fs.count);
 
-  const Scene scene = build_scene(scenario, summary.seed);
+  const Scene scene = build_scene(scenario, summary.seed, options.board);
   SensorModel sensor(scenario.camera.width, scenario.camera.height, scenario.sensor, summary.seed);
   FrameRenderer renderer(scene, scenario.render, sensor);
 

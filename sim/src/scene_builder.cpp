@@ -6,7 +6,12 @@
 
 namespace tetrapulse::sim {
 
-Scene build_scene(const Scenario& scenario, uint64_t seed) {
+std::unique_ptr<LedEmitter> contract_board_emitter(const TargetsFile& targets, size_t index,
+                                                   const BoardClockSpec& clock) {
+  return std::make_unique<CodeEmitter>(targets.timebase, targets.modulation, targets.targets[index], BoardClock(clock));
+}
+
+Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFactory& board) {
   Scene scene;
   scene.camera = CameraModel(scenario.camera);
   scene.camera_motion = Trajectory(scenario.camera_motion, stream_seed(seed, kStreamMotion, 0));
@@ -18,9 +23,8 @@ Scene build_scene(const Scenario& scenario, uint64_t seed) {
     const int body = static_cast<int>(scene.bodies.size());
     scene.bodies.emplace_back(sim.motion, stream_seed(seed, kStreamMotion, motion_index++));
     const int emitter = static_cast<int>(scene.emitters.size());
-    auto code = std::make_unique<CodeEmitter>(tf.timebase, tf.modulation, target, BoardClock(sim.clock));
     scene.emitters.push_back(std::make_unique<OccludedEmitter>(
-        std::move(code), std::vector<TimeIntervals>(sim.occluded.begin(), sim.occluded.end())));
+        board(tf, k, sim.clock), std::vector<TimeIntervals>(sim.occluded.begin(), sim.occluded.end())));
     SceneTarget st;
     st.id = target.id;
     st.body = body;

@@ -13,6 +13,7 @@
 #include "tetrapulse/localizer/rig_dataset.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 #include "tetrapulse/sim/dataset_simulation.hpp"
+#include "tetrapulse/sim/frame_renderer.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"
 #include "tetrapulse/sim/scene_builder.hpp"
 
@@ -140,6 +141,31 @@ TEST(DatasetSimulation, DroppedFramesAreMissingFromFramesCsv) {
   int64_t listed = 0;
   for (int64_t k = 0; k < 60; ++k) listed += frame_dropped(s.frames, s.seed, k);
   EXPECT_GE(listed, static_cast<int64_t>(s.frames.dropped.size()));
+}
+
+// The seam for the firmware's code player: a board emitter of our own drives the LEDs.
+class DarkBoard : public LedEmitter {
+  double do_mean_emission(int, int64_t, int64_t) const override { return 0.0; }
+};
+
+TEST(DatasetSimulation, ABoardEmitterCanReplaceTheContractFormula) {
+  const Scenario s = builtin("passive");
+  int made = 0;
+  const Scene lit = build_scene(s, 1);
+  const Scene dark = build_scene(s, 1, [&](const TargetsFile&, size_t, const BoardClockSpec&) {
+    ++made;
+    return std::make_unique<DarkBoard>();
+  });
+  EXPECT_EQ(made, static_cast<int>(s.targets.targets.size()));
+  SensorModel sensor(s.camera.width, s.camera.height, s.sensor, 1);
+  const auto light = [&](const Scene& scene) {
+    FrameRenderer renderer(scene, s.render, sensor);
+    cv::Mat l(s.camera.height, s.camera.width, CV_32F, cv::Scalar(0));
+    renderer.add_light(s.frames.start_ns, s.frames.exposure_ns, &l);
+    return cv::sum(l)[0];
+  };
+  EXPECT_GT(light(lit), 1000.0);
+  EXPECT_EQ(light(dark), 0.0);
 }
 
 // FNV-1a of every file under `root`, by relative path.
