@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "tetrapulse/localizer/dataset_io.hpp"
-#include "yaml_fields.hpp"
+#include "tetrapulse/localizer/yaml_fields.hpp"
 
 namespace tetrapulse {
 

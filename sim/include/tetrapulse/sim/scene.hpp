@@ -1,0 +1,48 @@
+#pragma once
+// What the virtual camera looks at: a camera and bodies moving through the world
+// frame W (motion.hpp), and glowing spheres fixed on those bodies, each lit by an
+// emitter. Markers are spheres on target bodies; distractor lamps are spheres on
+// bodies of their own. Metres, rig time; camera frame as in OpenCV.
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tetrapulse/localizer/camera_model.hpp"
+#include "tetrapulse/localizer/pose.hpp"
+#include "tetrapulse/sim/led_emitter.hpp"
+#include "tetrapulse/sim/motion.hpp"
+
+namespace tetrapulse::sim {
+
+struct LightSphere {
+  int body = 0;                                          // index into Scene::bodies
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // centre, body frame
+  double radius_m = 0;
+  double radiance_e_per_ms = 0;  // electrons per fully covered pixel per ms of exposure at full emission
+  int emitter = 0;               // index into Scene::emitters
+  int emitter_index = 0;         // which light of that emitter (a marker's index 0..3)
+};
+
+// A target: a body carrying four markers, named by the id it has in targets.yaml.
+struct SceneTarget {
+  int id = 0;
+  int body = 0;
+  std::vector<int> lights;  // its markers, indices into Scene::lights
+};
+
+struct Scene {
+  CameraModel camera{CameraInfo{}};
+  Trajectory camera_motion;
+  std::vector<Trajectory> bodies;
+  std::vector<std::unique_ptr<LedEmitter>> emitters;
+  std::vector<LightSphere> lights;
+  std::vector<SceneTarget> targets;
+
+  // Pose of body `body` in the camera frame at rig time t (seconds): p_C = R p_B + t.
+  Pose body_in_camera(int body, double t_s) const {
+    return camera_motion.at(t_s).inverse() * bodies[static_cast<size_t>(body)].at(t_s);
+  }
+};
+
+}  // namespace tetrapulse::sim
