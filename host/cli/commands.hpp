@@ -6,5 +6,6 @@
 namespace tetrapulse::cli {
 
 void add_version_command(CLI::App& app, int* result);
+void add_target_command(CLI::App& app, int* result);
 
 }  // namespace tetrapulse::cli
