@@ -6,7 +6,7 @@
 
 #include "block_ascent.hpp"
 #include "grid_start.hpp"
-#include "tetrapulse/hardware/parallel_runs.hpp"
+#include "parallel_runs.hpp"
 #include "tetrapulse/hardware/seeded_stream.hpp"
 #include "tetrapulse/hardware/top_view.hpp"
 #include "number_text.hpp"
