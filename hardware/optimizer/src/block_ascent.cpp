@@ -14,7 +14,7 @@ std::vector<TargetShape> shapes_of(const TargetModel& model, const std::vector<E
 }  // namespace
 
 Eq1Score block_ascent(const TargetModel& model, const Eq1Limits& limits, const BlockAscentOptions& options,
-                      std::vector<Eigen::VectorXd>* params, const FirstStart& first_start) {
+                      std::vector<Eigen::VectorXd>* params, const SweepStart& sweep_start) {
   const int n = static_cast<int>(params->size());
   std::vector<TargetShape> shapes = shapes_of(model, *params);
   double f = eq1_score(shapes, limits).f;
@@ -35,8 +35,8 @@ Eq1Score block_ascent(const TargetModel& model, const Eq1Limits& limits, const B
         return eq1_value(pool.spread_with(s.distances.data(), 6), violation, limits);
       };
       Eigen::VectorXd start = (*params)[b];
-      if (sweep == 0 && first_start) {
-        const Eigen::VectorXd proposed = first_start(b, start, objective);
+      if (sweep_start) {
+        const Eigen::VectorXd proposed = sweep_start(b, start, objective);
         if (objective(proposed) > objective(start)) start = proposed;
       }
       const NelderMeadResult r = nelder_mead_maximize(objective, start, options.simplex);

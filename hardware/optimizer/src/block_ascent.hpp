@@ -16,9 +16,10 @@ namespace tetrapulse::hardware {
 
 // Target `index` as Eq. 1 sees it, at parameters `x`.
 using TargetModel = std::function<TargetShape(int index, const Eigen::VectorXd& x)>;
-// Where target `index`'s first simplex starts, given its objective (others fixed);
-// empty: from its current parameters.
-using FirstStart = std::function<Eigen::VectorXd(int index, const Eigen::VectorXd& current, const Objective& f)>;
+// Where target `index`'s simplex starts in each sweep, given its objective (others
+// fixed); kept only when better than its current parameters. Empty: from the current
+// parameters. A cheap global scan here lets a target jump past local optima.
+using SweepStart = std::function<Eigen::VectorXd(int index, const Eigen::VectorXd& current, const Objective& f)>;
 
 struct BlockAscentOptions {
   NelderMeadOptions simplex;
@@ -28,6 +29,6 @@ struct BlockAscentOptions {
 
 // Updates *params (one vector per target) in place; returns the system's Eq. 1.
 Eq1Score block_ascent(const TargetModel& model, const Eq1Limits& limits, const BlockAscentOptions& options,
-                      std::vector<Eigen::VectorXd>* params, const FirstStart& first_start = {});
+                      std::vector<Eigen::VectorXd>* params, const SweepStart& sweep_start = {});
 
 }  // namespace tetrapulse::hardware

@@ -12,7 +12,7 @@ namespace tetrapulse::hardware {
 
 namespace {
 
-constexpr int kScanDirections = 64;  // starts scanned per target before its first simplex
+constexpr int kScanDirections = 64;  // starts scanned per target before each of its simplices
 
 Eigen::VectorXd angles_of(const Eigen::Vector3d& up) {
   Eigen::VectorXd x(2);
@@ -42,7 +42,7 @@ TopView best_top_view(const std::vector<Markers>& targets, const Eq1Limits& top)
   };
   // Up and down give the same projection: half the sphere holds every view.
   const std::vector<Eigen::Vector3d> scan = fibonacci_directions(kScanDirections, true);
-  const FirstStart first_start = [&](int, const Eigen::VectorXd& current, const Objective& f) {
+  const SweepStart scan_start = [&](int, const Eigen::VectorXd& current, const Objective& f) {
     Eigen::VectorXd best = current;
     double best_f = f(current);
     for (const Eigen::Vector3d& d : scan) {
@@ -60,7 +60,7 @@ TopView best_top_view(const std::vector<Markers>& targets, const Eq1Limits& top)
   options.simplex.step = 0.2;  // radians
   options.simplex.x_tolerance = 1e-9;
   TopView view;
-  view.score = block_ascent(model, top, options, &params, first_start);
+  view.score = block_ascent(model, top, options, &params, scan_start);
   for (const Eigen::VectorXd& x : params) view.up.push_back(direction_from_angles(x[0], x[1]));
   return view;
 }

@@ -29,8 +29,9 @@ struct TopView {
   Eq1Score score;                   // Eq. 1 of the projections under the adjusted limits
 };
 
-// The best up vectors for the system, jointly (block_ascent over the targets; each
-// target's first simplex starts at the best of a deterministic set of directions).
+// The best up vectors for the system, jointly (block_ascent over the targets; in every
+// sweep each target's simplex starts at the best of its current direction and a fixed
+// set of 64 directions, so a target can jump past the others' local optima).
 TopView best_top_view(const std::vector<Markers>& targets, const Eq1Limits& top);
 
 // Markers in the target frame: `up` becomes +z (the support plane's normal), the
