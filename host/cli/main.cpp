@@ -13,8 +13,8 @@ int main(int argc, char** argv) {
   int result = kExitOk;
   add_version_command(app, &result);
   add_codebook_command(app, &result);
-
   add_sim_command(app, &result);
+  add_target_command(app, &result);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
