@@ -9,5 +9,7 @@ void add_version_command(CLI::App& app, int* result);
 void add_codebook_command(CLI::App& app, int* result);
 void add_sim_command(CLI::App& app, int* result);
 void add_target_command(CLI::App& app, int* result);
+void add_localize_command(CLI::App& app, int* result);
+void add_eval_command(CLI::App& app, int* result);
 
 }  // namespace tetrapulse::cli

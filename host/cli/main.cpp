@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   add_codebook_command(app, &result);
   add_sim_command(app, &result);
   add_target_command(app, &result);
+  add_localize_command(app, &result);
+  add_eval_command(app, &result);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

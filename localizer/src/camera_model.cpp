@@ -1,8 +1,11 @@
 #include "tetrapulse/localizer/camera_model.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include <Eigen/LU>
+
+#include "tetrapulse/localizer/polynomial_roots.hpp"
 
 namespace tetrapulse {
 
@@ -19,7 +22,51 @@ void fisheye_theta_d(const std::array<double, 5>& k, double theta, double* theta
   *dtheta_d = 1 + 3 * k[0] * t2 + 5 * k[1] * t4 + 7 * k[2] * t6 + 9 * k[3] * t8;
 }
 
+// Smallest positive root of c[0] + c[1] s + ... + c[4] s^4 (c[0] = 1 > 0: the
+// first sign change of a radial map's derivative); infinity when there is none.
+double first_positive_root(const std::array<double, 5>& c) {
+  int degree = 4;
+  while (degree > 0 && c[size_t(degree)] == 0) --degree;
+  std::array<double, 4> roots{};
+  int n = 0;
+  if (degree == 4) {
+    n = real_quartic_roots(c[4], c[3], c[2], c[1], c[0], &roots);
+  } else if (degree == 3) {
+    std::array<double, 3> r3{};
+    n = real_cubic_roots(c[3], c[2], c[1], c[0], &r3);
+    for (int i = 0; i < n; ++i) roots[size_t(i)] = r3[size_t(i)];
+  } else if (degree == 2) {
+    const double disc = c[1] * c[1] - 4 * c[2] * c[0];
+    if (disc >= 0) {
+      const double q = -0.5 * (c[1] + std::copysign(std::sqrt(disc), c[1]));
+      roots[0] = q / c[2];
+      roots[1] = q != 0 ? c[0] / q : roots[0];
+      n = 2;
+    }
+  } else if (degree == 1) {
+    roots[0] = -c[0] / c[1];
+    n = 1;
+  }
+  double first = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i)
+    if (roots[size_t(i)] > 0) first = std::min(first, roots[size_t(i)]);
+  return first;
+}
+
 }  // namespace
+
+CameraModel::CameraModel(const CameraInfo& info)
+    : info_(info), max_r2_(std::numeric_limits<double>::infinity()), max_theta_(M_PI / 2) {
+  const auto& k = info_.distortion;
+  if (info_.model == DistortionModel::kPlumbBob) {
+    // d/dr [r (1 + k1 r^2 + k2 r^4 + k3 r^6)] = 1 + 3 k1 s + 5 k2 s^2 + 7 k3 s^3, s = r^2.
+    max_r2_ = first_positive_root({1.0, 3 * k[0], 5 * k[1], 7 * k[4], 0.0});
+  } else {
+    // d theta_d / d theta = 1 + 3 k1 u + 5 k2 u^2 + 7 k3 u^3 + 9 k4 u^4, u = theta^2.
+    const double u = first_positive_root({1.0, 3 * k[0], 5 * k[1], 7 * k[2], 9 * k[3]});
+    max_theta_ = std::min(M_PI / 2, std::sqrt(u));
+  }
+}
 
 // Distortion in normalized coordinates, for plumb_bob: (x, y) -> (x', y') and its Jacobian.
 bool CameraModel::distort(const Eigen::Vector2d& xy, Eigen::Vector2d* out, Eigen::Matrix2d* J) const {
@@ -46,6 +93,7 @@ bool CameraModel::project(const Eigen::Vector3d& p, Eigen::Vector2d* px, Eigen::
   Eigen::Matrix<double, 2, 3> dxd_dp;
   if (info_.model == DistortionModel::kPlumbBob) {
     const Eigen::Vector2d xy(X / Z, Y / Z);
+    if (!(xy.squaredNorm() < max_r2_)) return false;
     Eigen::Matrix2d Jd;
     distort(xy, &xd, J ? &Jd : nullptr);
     if (J) {
@@ -56,6 +104,7 @@ bool CameraModel::project(const Eigen::Vector3d& p, Eigen::Vector2d* px, Eigen::
   } else {
     const double rho = std::hypot(X, Y);
     const double theta = std::atan2(rho, Z);
+    if (!(theta < max_theta_)) return false;
     double td, dtd;
     fisheye_theta_d(info_.distortion, theta, &td, &dtd);
     if (rho < 1e-12 * Z) {
@@ -100,7 +149,7 @@ bool CameraModel::unproject(const Eigen::Vector2d& px, Eigen::Vector3d* bearing)
     }
     Eigen::Vector2d check;
     distort(x, &check, nullptr);
-    if (!((check - xd).norm() < 1e-9)) return false;
+    if (!((check - xd).norm() < 1e-9) || !(x.squaredNorm() < max_r2_)) return false;
     *bearing = Eigen::Vector3d(x.x(), x.y(), 1.0).normalized();
     return true;
   }
@@ -121,7 +170,7 @@ bool CameraModel::unproject(const Eigen::Vector2d& px, Eigen::Vector3d* bearing)
   }
   double td, dtd;
   fisheye_theta_d(info_.distortion, theta, &td, &dtd);
-  if (!(std::abs(td - rd) < 1e-9) || !(theta >= 0) || !(theta < M_PI / 2)) return false;
+  if (!(std::abs(td - rd) < 1e-9) || !(theta >= 0) || !(theta < max_theta_)) return false;
   const double s = std::sin(theta) / rd;
   *bearing = Eigen::Vector3d(s * xd.x(), s * xd.y(), std::cos(theta));
   return true;

@@ -13,6 +13,7 @@ namespace tetrapulse {
 namespace {
 
 constexpr const char* kFramesHeader = "frame,timestamp_ns,exposure_ns,file";
+constexpr const char* kTimestampsHeader = "frame,timestamp_ns,exposure_ns";
 constexpr const char* kGroundTruthHeader = "frame,target,x,y,z,qx,qy,qz,qw";
 constexpr const char* kPosesHeader = "frame,timestamp_ns,target,x,y,z,qx,qy,qz,qw,markers,reprojection_px";
 
@@ -47,31 +48,56 @@ DatasetResult<T> read_table(const std::string& path, const char* header,
 
 }  // namespace
 
+namespace {
+
+// frame,timestamp_ns,exposure_ns (the first columns of frames.csv and of a
+// recording's timestamps), each row after `prev` in frame number and time.
+bool read_timing(csv::FieldReader& r, const std::vector<FrameRecord>& prev, FrameRecord* f) {
+  f->frame = r.integer(0, "frame");
+  f->timestamp_ns = r.integer(1, "timestamp_ns");
+  f->exposure_ns = r.integer(2, "exposure_ns");
+  if (!r.failed() && f->frame < 0) r.fail(fmt::format("frame: must be non-negative, got {}", f->frame));
+  if (!r.failed() && f->exposure_ns <= 0) r.fail(fmt::format("exposure_ns: must be positive, got {}", f->exposure_ns));
+  if (!r.failed() && !prev.empty()) {
+    const FrameRecord& p = prev.back();
+    if (f->frame <= p.frame) {
+      r.fail(fmt::format("frame: {} does not follow {} (frame numbers must increase)", f->frame, p.frame));
+    } else if (f->timestamp_ns == p.timestamp_ns) {
+      r.fail(fmt::format("timestamp_ns: {} duplicates frame {}", f->timestamp_ns, p.frame));
+    } else if (f->timestamp_ns < p.timestamp_ns) {
+      r.fail(fmt::format("timestamp_ns: {} is earlier than frame {}'s {} (timestamps must increase)", f->timestamp_ns,
+                         p.frame, p.timestamp_ns));
+    }
+  }
+  return !r.failed();
+}
+
+}  // namespace
+
 DatasetResult<std::vector<FrameRecord>> read_frames_csv(const std::string& path) {
   using Rows = std::vector<FrameRecord>;
   return read_table<Rows>(path, kFramesHeader, [](const csv::Table& t, Rows* out) -> std::optional<DatasetError> {
     for (const auto& row : t.rows()) {
       csv::FieldReader r(t, row);
       FrameRecord f;
-      f.frame = r.integer(0, "frame");
-      f.timestamp_ns = r.integer(1, "timestamp_ns");
-      f.exposure_ns = r.integer(2, "exposure_ns");
-      f.file = r.text(3);
-      if (!r.failed() && f.frame < 0) r.fail(fmt::format("frame: must be non-negative, got {}", f.frame));
-      if (!r.failed() && f.exposure_ns <= 0) r.fail(fmt::format("exposure_ns: must be positive, got {}", f.exposure_ns));
-      if (!r.failed() && f.file.empty()) r.fail("file: empty");
-      if (!r.failed() && !out->empty()) {
-        const FrameRecord& prev = out->back();
-        if (f.frame <= prev.frame) {
-          r.fail(fmt::format("frame: {} does not follow {} (frame numbers must increase)", f.frame, prev.frame));
-        } else if (f.timestamp_ns == prev.timestamp_ns) {
-          r.fail(fmt::format("timestamp_ns: {} duplicates frame {}", f.timestamp_ns, prev.frame));
-        } else if (f.timestamp_ns < prev.timestamp_ns) {
-          r.fail(fmt::format("timestamp_ns: {} is earlier than frame {}'s {} (timestamps must increase)",
-                             f.timestamp_ns, prev.frame, prev.timestamp_ns));
-        }
+      if (read_timing(r, *out, &f)) {
+        f.file = r.text(3);
+        if (f.file.empty()) r.fail("file: empty");
       }
       if (r.failed()) return r.error();
+      out->push_back(std::move(f));
+    }
+    return std::nullopt;
+  });
+}
+
+DatasetResult<std::vector<FrameRecord>> read_timestamps_csv(const std::string& path) {
+  using Rows = std::vector<FrameRecord>;
+  return read_table<Rows>(path, kTimestampsHeader, [](const csv::Table& t, Rows* out) -> std::optional<DatasetError> {
+    for (const auto& row : t.rows()) {
+      csv::FieldReader r(t, row);
+      FrameRecord f;
+      if (!read_timing(r, *out, &f)) return r.error();
       out->push_back(std::move(f));
     }
     return std::nullopt;

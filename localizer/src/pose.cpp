@@ -22,6 +22,12 @@ Eigen::Matrix3d so3_exp(const Eigen::Vector3d& w) {
   return Eigen::Matrix3d::Identity() + a * W + b * W * W;
 }
 
+Eigen::Vector3d so3_log(const Eigen::Matrix3d& R) {
+  // Eigen's angle-axis conversion goes through the quaternion: stable near 0 and pi.
+  const Eigen::AngleAxisd aa(Eigen::Quaterniond(R).normalized());
+  return aa.angle() * aa.axis();
+}
+
 double rotation_angle_between(const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb) {
   // atan2 of (|axis|*sin, cos) stays accurate for small angles, unlike acos((tr-1)/2).
   const Eigen::Matrix3d D = Ra.transpose() * Rb;

@@ -129,6 +129,67 @@ TEST(CameraModel, PointsBehindTheCameraDoNotProject) {
   EXPECT_FALSE(cam.project(Eigen::Vector3d(0.1, 0.1, 0), &px));
 }
 
+// Strong barrel distortion: r (1 - 0.4 r^2) peaks at r^2 = 1/1.2 and then folds back,
+// so a point 60 degrees off-axis would land 0.2 focal lengths from the centre.
+CameraInfo folding_plumb_bob() {
+  CameraInfo c = pinhole();
+  c.distortion = {-0.4, 0.0, 0.0, 0.0, 0.0};
+  return c;
+}
+
+TEST(CameraModel, PlumbBobRangeIsWhereTheRadialMapIncreases) {
+  const CameraModel cam(folding_plumb_bob());
+  EXPECT_NEAR(cam.max_radius2(), 1.0 / 1.2, 1e-12);
+  // Without the range check this point would project inside the image.
+  const Eigen::Vector3d far_off_axis(std::tan(60 * M_PI / 180), 0, 1);
+  const double r = far_off_axis.x(), folded_u = 376.0 * r * (1 - 0.4 * r * r) + 375.3;
+  ASSERT_TRUE(cam.in_image(Eigen::Vector2d(folded_u, 241.1)));
+  Eigen::Vector2d px;
+  EXPECT_FALSE(cam.project(far_off_axis, &px));
+  // Just inside the range it projects; just outside it does not, in every direction.
+  const double edge = std::sqrt(cam.max_radius2());
+  for (int k = 0; k < 16; ++k) {
+    const double a = 2 * M_PI * k / 16;
+    EXPECT_TRUE(cam.project(Eigen::Vector3d(0.999 * edge * std::cos(a), 0.999 * edge * std::sin(a), 1), &px));
+    EXPECT_FALSE(cam.project(Eigen::Vector3d(1.001 * edge * std::cos(a), 1.001 * edge * std::sin(a), 1), &px));
+  }
+}
+
+TEST(CameraModel, ProjectionIsMonotonicAlongEveryRayWithinItsRange) {
+  // Sweep coefficient sets, some of which fold: along a ray from the axis, every
+  // projected point lies further from the principal point than the one before.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> k(-0.5, 0.2);
+  int folds = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    CameraInfo info = pinhole();
+    info.distortion = {k(rng), k(rng), 0.0, 0.0, 0.2 * k(rng)};
+    const CameraModel cam(info);
+    folds += std::isfinite(cam.max_radius2());
+    double last = -1;
+    for (double r = 0; r < 4; r += 0.01) {
+      Eigen::Vector2d px;
+      if (!cam.project(Eigen::Vector3d(r, 0.3 * r, 1), &px)) break;
+      const double from_centre = (px - Eigen::Vector2d(info.cx, info.cy)).norm();
+      ASSERT_GT(from_centre, last) << "trial " << trial << " r " << r;
+      last = from_centre;
+    }
+  }
+  EXPECT_GT(folds, 20);  // the sweep did meet folding models
+}
+
+TEST(CameraModel, EquidistantRangeIsWhereThetaDIncreases) {
+  CameraInfo info = fisheye();
+  info.distortion = {-0.3, 0.0, 0.0, 0.0, 0.0};  // d theta_d / d theta = 1 - 0.9 theta^2
+  const CameraModel cam(info);
+  EXPECT_NEAR(cam.max_theta(), std::sqrt(1 / 0.9), 1e-12);
+  Eigen::Vector2d px;
+  const double t = cam.max_theta();
+  EXPECT_TRUE(cam.project(Eigen::Vector3d(std::sin(0.999 * t), 0, std::cos(0.999 * t)), &px));
+  EXPECT_FALSE(cam.project(Eigen::Vector3d(std::sin(1.001 * t), 0, std::cos(1.001 * t)), &px));
+  EXPECT_EQ(CameraModel(fisheye()).max_theta(), M_PI / 2);  // the test lens never folds
+}
+
 TEST(CameraModel, PixelCentresAreIntegers) {
   const CameraModel cam(pinhole());
   EXPECT_TRUE(cam.in_image(Eigen::Vector2d(-0.5, -0.5)));

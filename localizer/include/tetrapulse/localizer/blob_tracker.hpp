@@ -107,6 +107,8 @@ class BlobTracker {
   explicit BlobTracker(BlobTrackerConfig config = {});
 
   const BlobTrackerConfig& config() const { return config_; }
+  // Coasting can be set once the frame period is known (coast_frames_for).
+  void set_max_coast_frames(int frames) { config_.max_coast_frames = frames; }
 
   // One frame. First every ROI measurement whose tag names a live track is
   // that track's sample (detected or not: an absent ROI still brings its

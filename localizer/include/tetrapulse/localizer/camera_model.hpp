@@ -38,15 +38,17 @@ struct CameraInfo {
 
 class CameraModel {
  public:
-  explicit CameraModel(const CameraInfo& info) : info_(info) {}
+  explicit CameraModel(const CameraInfo& info);
 
   const CameraInfo& info() const { return info_; }
   int width() const { return info_.width; }
   int height() const { return info_.height; }
 
   // Pixel of camera-frame point p_C. Returns false when p_C is not in front of
-  // the camera (z <= 0) or beyond the model's valid range. With `J`, also
-  // writes d(u, v) / d(p_C) (2x3, pixels per metre).
+  // the camera (z <= 0) or beyond the model's valid range: where the radial map
+  // stops growing (max_radius2(), max_theta()), a lens model folds far
+  // off-axis points back into the image. With `J`, also writes
+  // d(u, v) / d(p_C) (2x3, pixels per metre).
   bool project(const Eigen::Vector3d& p_C, Eigen::Vector2d* px,
                Eigen::Matrix<double, 2, 3>* J = nullptr) const;
 
@@ -58,9 +60,19 @@ class CameraModel {
   // shrunk by `margin` pixels on every side.
   bool in_image(const Eigen::Vector2d& px, double margin = 0.0) const;
 
+  // plumb_bob: the largest r^2 = (X/Z)^2 + (Y/Z)^2 below which the radial map
+  // r -> r (1 + k1 r^2 + k2 r^4 + k3 r^6) is increasing (infinity when it always
+  // is); the tangential terms are left out (they are small and never fold).
+  double max_radius2() const { return max_r2_; }
+  // equidistant: the largest angle from the optical axis (rad) below which
+  // theta -> theta_d is increasing, at most pi / 2.
+  double max_theta() const { return max_theta_; }
+
  private:
   bool distort(const Eigen::Vector2d& xy, Eigen::Vector2d* out, Eigen::Matrix2d* J) const;
   CameraInfo info_;
+  double max_r2_;     // computed once from the coefficients
+  double max_theta_;
 };
 
 }  // namespace tetrapulse

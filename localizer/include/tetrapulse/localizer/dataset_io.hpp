@@ -60,6 +60,10 @@ std::string format_targets_yaml(const TargetsFile& targets);
 DatasetResult<std::vector<FrameRecord>> read_frames_csv(const std::string& path);
 std::string format_frames_csv(const std::vector<FrameRecord>& frames);
 
+// A recording's timestamps (a video beside it): frames.csv without the file
+// column, header frame,timestamp_ns,exposure_ns; the same checks. `file` is empty.
+DatasetResult<std::vector<FrameRecord>> read_timestamps_csv(const std::string& path);
+
 DatasetResult<std::vector<GroundTruthRecord>> read_groundtruth_csv(const std::string& path);
 std::string format_groundtruth_csv(const std::vector<GroundTruthRecord>& rows);
 

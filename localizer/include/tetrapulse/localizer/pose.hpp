@@ -31,6 +31,9 @@ struct Pose {
 // exp([w]x): the rotation by |w| radians about the axis w (Rodrigues' formula).
 Eigen::Matrix3d so3_exp(const Eigen::Vector3d& w);
 
+// log(R): the rotation vector w with exp([w]x) = R, |w| in [0, pi].
+Eigen::Vector3d so3_log(const Eigen::Matrix3d& R);
+
 // Angle of the rotation R_a^T R_b in radians, in [0, pi].
 double rotation_angle_between(const Eigen::Matrix3d& Ra, const Eigen::Matrix3d& Rb);
 

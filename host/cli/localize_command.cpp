@@ -1,0 +1,184 @@
+// tetrapulse localize: identified 6D poses from a rig dataset, a recorded video
+// with its timestamps, or a live camera.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "exit_codes.hpp"
+#include "progress_bar.hpp"
+#include "tetrapulse/localizer/frame_source.hpp"
+#include "tetrapulse/localizer/localizer.hpp"
+#include "tetrapulse/localizer/pose_writer.hpp"
+
+namespace tetrapulse::cli {
+
+namespace {
+
+struct LocalizeArgs {
+  std::string dataset;
+  std::string out;
+  std::string format = "csv";
+  std::string p3p = "lambda";
+  std::string prediction = "regression";
+  int regression_poses = 2;
+  bool centre_projection = false;
+  int full_search_interval = 4;
+  std::string video;
+  std::string timestamps;
+  std::string camera;
+  int64_t exposure_ns = 2'000'000;
+  std::string camera_info;
+  std::string targets;
+  bool quiet = false;
+};
+
+int fail(int code, const std::string& message) {
+  std::fprintf(stderr, "tetrapulse localize: %s\n", message.c_str());
+  return code;
+}
+
+PoseFormat format_of(const std::string& name) {
+  if (name == "tum") return PoseFormat::kTum;
+  if (name == "jsonl") return PoseFormat::kJsonLines;
+  return PoseFormat::kCsv;
+}
+
+int run_localize(const LocalizeArgs& a) {
+  const bool live = !a.camera.empty();
+  if (a.dataset.empty() && (a.camera_info.empty() || a.targets.empty())) {
+    return fail(kExitUsage, "give a DATASET folder (or --camera-info and --targets)");
+  }
+  if (a.out.empty() && !live) return fail(kExitUsage, "--out FILE is required (\"-\" for standard output)");
+  if (!a.video.empty() && a.timestamps.empty()) return fail(kExitUsage, "--video needs --timestamps CSV");
+  if (live && !a.video.empty()) return fail(kExitUsage, "--camera and --video exclude each other");
+
+  // Calibration and targets: the dataset's, unless given.
+  std::optional<RigDataset> dataset;
+  CameraInfo camera;
+  TargetsFile targets;
+  const bool frames_from_dataset = a.video.empty() && !live;
+  if (frames_from_dataset) {
+    auto d = RigDataset::open(a.dataset);
+    if (!d) return fail(kExitBadInput, d.error().what());
+    dataset = std::move(*d);
+    camera = dataset->camera();
+    targets = dataset->targets();
+  }
+  const std::string folder = a.dataset.empty() ? "." : a.dataset;
+  if (!a.camera_info.empty() || !frames_from_dataset) {
+    auto c = read_camera_yaml(a.camera_info.empty() ? folder + "/camera.yaml" : a.camera_info);
+    if (!c) return fail(kExitBadInput, c.error().what());
+    camera = *c;
+  }
+  if (!a.targets.empty() || !frames_from_dataset) {
+    auto t = read_targets_yaml(a.targets.empty() ? folder + "/targets.yaml" : a.targets);
+    if (!t) return fail(kExitBadInput, t.error().what());
+    targets = *t;
+  }
+
+  std::unique_ptr<FrameSource> source;
+  if (frames_from_dataset) {
+    source = dataset_frames(*dataset);
+  } else if (!a.video.empty()) {
+    auto s = video_frames(a.video, a.timestamps, camera);
+    if (!s) return fail(kExitBadInput, s.error().what());
+    source = std::move(*s);
+  } else {
+    auto s = camera_frames(a.camera, camera, a.exposure_ns);
+    if (!s) return fail(kExitNoDevice, s.error().what());
+    source = std::move(*s);
+  }
+
+  LocalizerOptions options;
+  options.p3p = a.p3p == "kneip" ? P3PSolver::kKneip : P3PSolver::kLambdaTwist;
+  options.prediction.model =
+      a.prediction == "kalman" ? PredictionModel::kConstantVelocity : PredictionModel::kLinearRegression;
+  options.prediction.regression_poses = a.regression_poses;
+  options.pose.sphere_centroid = !a.centre_projection;
+  options.full_search_interval = a.full_search_interval;
+  Localizer localizer(camera, targets, options);
+
+  const PoseFormat format = format_of(a.format);
+  std::optional<PoseWriter> writer;
+  if (!a.out.empty()) {
+    auto w = PoseWriter::open(a.out, format, targets);
+    if (!w) return fail(kExitFailure, w.error().what());
+    writer = std::move(*w);
+  }
+  const bool print = live && a.out != "-";  // a live camera prints poses as they come
+  ProgressBar progress(source->count(), !a.quiet && !live);
+  const auto on_frame = [&](const Frame& f, const std::vector<TargetPose>& poses) -> DatasetResult<void> {
+    const int64_t mid = f.timestamp_ns + f.exposure_ns / 2;
+    for (const TargetPose& p : poses) {
+      if (writer) {
+        if (auto r = writer->write(f.frame, mid, p); !r) return r;
+      }
+      if (print) {
+        std::fputs(format_pose_line(format, f.frame, mid, p).c_str(), stdout);
+        std::fflush(stdout);
+      }
+    }
+    progress.advance();
+    return {};
+  };
+  auto frames = localize_frames(*source, localizer, on_frame);
+  progress.finish();
+  if (!frames) return fail(kExitBadInput, frames.error().what());
+  size_t rows = 0;
+  if (writer) {
+    rows = writer->rows();
+    if (auto r = writer->close(); !r) return fail(kExitFailure, r.error().what());
+  }
+  if (!a.quiet && a.out != "-") {
+    std::fprintf(stderr, "tetrapulse localize: %zu frames, %zu poses%s%s\n", *frames, rows,
+                 a.out.empty() ? "" : " written to ", a.out.c_str());
+  }
+  if (*frames > 0 && rows == 0 && writer) return fail(kExitFailure, "no target was identified in any frame");
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_localize_command(CLI::App& app, int* result) {
+  auto args = std::make_shared<LocalizeArgs>();
+  auto* cmd = app.add_subcommand("localize", "Identified 6D poses of the targets from images (poses.csv)");
+  cmd->add_option("dataset", args->dataset,
+                  "Rig dataset folder (with --video or --camera: where camera.yaml and targets.yaml are)");
+  cmd->add_option("--out", args->out, "Poses file to write (\"-\": standard output)");
+  cmd->add_option("--format", args->format, "csv (poses.csv), tum (one trajectory per target) or jsonl")
+      ->check(CLI::IsMember({"csv", "tum", "jsonl"}))
+      ->capture_default_str();
+  cmd->add_option("--p3p", args->p3p, "P3P solver: lambda (Lambda Twist) or kneip")
+      ->check(CLI::IsMember({"lambda", "kneip"}))
+      ->capture_default_str();
+  cmd->add_option("--prediction", args->prediction, "Pose prediction: regression (k_R poses) or kalman")
+      ->check(CLI::IsMember({"regression", "kalman"}))
+      ->capture_default_str();
+  cmd->add_option("--regression-poses", args->regression_poses, "k_R, poses in the linear regression")
+      ->check(CLI::Range(1, PosePredictor::kMaxRegressionPoses))
+      ->capture_default_str();
+  cmd->add_flag("--centre-projection", args->centre_projection,
+                "Model blob centroids as the projections of marker centres (default: sphere images)");
+  cmd->add_option("--full-search-interval", args->full_search_interval,
+                  "Frames between whole-image searches while something is not tracked")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--video", args->video, "A recorded video (frames in order of --timestamps)");
+  cmd->add_option("--timestamps", args->timestamps, "CSV frame,timestamp_ns,exposure_ns for --video");
+  cmd->add_option("--camera", args->camera, "A live V4L2 camera, e.g. /dev/video0: prints poses as they come");
+  cmd->add_option("--exposure-ns", args->exposure_ns, "Exposure of the live camera (ns)")
+      ->check(CLI::Range(int64_t{1}, int64_t{10'000'000'000}))
+      ->capture_default_str();
+  cmd->add_option("--camera-info", args->camera_info, "camera.yaml to use (default: DATASET/camera.yaml)");
+  cmd->add_option("--targets", args->targets, "targets.yaml to use (default: DATASET/targets.yaml)");
+  cmd->add_flag("--quiet", args->quiet, "No progress bar or summary");
+  cmd->footer("Dataset format and poses.csv: spec/rig-dataset.md.");
+  cmd->callback([args, result] { *result = run_localize(*args); });
+}
+
+}  // namespace tetrapulse::cli

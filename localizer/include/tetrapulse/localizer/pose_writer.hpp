@@ -1,0 +1,57 @@
+#pragma once
+// Writing the localizer's poses:
+//   csv    poses.csv exactly as spec/rig-dataset.md defines it;
+//   tum    TUM RGB-D trajectories, "timestamp tx ty tz qx qy qz qw" with the
+//          mid-exposure time in seconds: one file per target (PATH itself for a
+//          single target, else STEM.target<ID>EXT);
+//   jsonl  one JSON object per pose: frame, timestamp_ns, target, status,
+//          markers, reprojection_px, t [m], q [x, y, z, w], and covariance: the
+//          6x6 covariance of (w, v) row-major (rad, m; R <- exp([w]x) R,
+//          t <- t + v, camera frame; pose_refinement.hpp), or null.
+// Files are written to PATH.tmp and renamed on close, so a run that fails
+// never leaves half a file; "-" writes to standard output as poses come.
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "tetrapulse/localizer/dataset_error.hpp"
+#include "tetrapulse/localizer/localizer.hpp"
+
+namespace tetrapulse {
+
+enum class PoseFormat { kCsv, kTum, kJsonLines };
+const char* pose_format_name(PoseFormat format);
+
+class PoseWriter {
+ public:
+  static DatasetResult<PoseWriter> open(const std::string& path, PoseFormat format, const TargetsFile& targets);
+  PoseWriter(PoseWriter&&) noexcept;
+  PoseWriter& operator=(PoseWriter&&) noexcept;
+  ~PoseWriter();
+
+  DatasetResult<void> write(int64_t frame, int64_t mid_exposure_ns, const TargetPose& pose);
+  // Flushes, closes and renames into place.
+  DatasetResult<void> close();
+
+  size_t rows() const { return rows_; }
+
+ private:
+  PoseWriter() = default;
+  struct File {
+    std::string path;  // final path ("-": stdout)
+    std::FILE* stream = nullptr;
+  };
+  DatasetResult<File*> file_for(int target_id);
+
+  std::string path_;
+  PoseFormat format_ = PoseFormat::kCsv;
+  bool split_by_target_ = false;
+  std::map<int, File> files_;  // key -1: the single file
+  size_t rows_ = 0;
+};
+
+// One poses.csv line (with newline) / TUM line / JSON line for a pose.
+std::string format_pose_line(PoseFormat format, int64_t frame, int64_t mid_exposure_ns, const TargetPose& pose);
+
+}  // namespace tetrapulse

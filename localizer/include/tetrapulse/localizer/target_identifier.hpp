@@ -1,0 +1,109 @@
+#pragma once
+// Identification: which unclaimed blob tracks are which target's markers.
+//
+// A hypothesis names a target and four tracks, one per marker. Its evidence:
+//   codes     the tracks' read bits (track_bits.hpp) against the markers' codes
+//             (code_match.hpp): synchronized boards under the time base's clock;
+//             free-running boards under one clock per target whose phase is
+//             searched (phase_steps per bit over the whole code cycle, so any
+//             cyclic shift is tried); constant modulation has no codes.
+//   geometry  the tracks' pixels this frame must be explained by one pose of the
+//             target: known-correspondence P4P (p4p.hpp), refined, with an RMS
+//             reprojection error of at most max_rms_px.
+// A hypothesis is accepted when its code cost (mismatches, code_match.hpp) is
+// within the error budget, it has read enough bits, its geometry holds, and no
+// rival comes close: a rival is any other hypothesis for the same target or
+// sharing a track whose code cost is below cost + code_margin and whose
+// geometry holds with an RMS below rms + geometry_margin_px. So codes decide
+// between targets of equal geometry, geometry decides between the markers of
+// targets whose markers share a code, and both must agree. Ambiguity means
+// waiting for more frames, never guessing.
+//
+// Hypotheses need four tracks; tracks too far apart for one target (judged from
+// their blob sizes and the marker diameter) are never combined.
+// Pixels in the OpenCV convention; poses as pose.hpp; times in rig-time ns.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tetrapulse/localizer/blob_tracker.hpp"
+#include "tetrapulse/localizer/camera_model.hpp"
+#include "tetrapulse/localizer/code_clock.hpp"
+#include "tetrapulse/localizer/code_match.hpp"
+#include "tetrapulse/localizer/p3p.hpp"
+#include "tetrapulse/localizer/pose.hpp"
+#include "tetrapulse/localizer/targets.hpp"
+#include "tetrapulse/localizer/track_bits.hpp"
+
+namespace tetrapulse {
+
+struct IdentificationOptions {
+  P3PSolver solver = kDefaultP3PSolver;
+  double max_rms_px = 2.0;          // geometry cross-check
+  double geometry_margin_px = 1.0;  // a rival this much worse in geometry is no rival
+  double code_margin = 3.0;         // a rival this many bit errors worse is no rival
+  int min_bits = 12;                // read bits over a hypothesis' four tracks (coded targets)
+  int min_bits_per_track = 2;
+  int bits_per_error = 16;          // one read error tolerated per this many bits
+  int phase_steps = 8;              // free-running phase search: phases per bit
+  int max_samples = 48;             // newest samples of each track used
+  size_t max_hypotheses = 20000;    // more combinations than this: wait for more bits
+};
+
+// A track as the identifier sees it this frame.
+struct CandidateTrack {
+  const BlobTrack* track = nullptr;
+  const TrackBits* bits = nullptr;                    // read bits of track->history()
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();    // blob this frame, or the track's prediction
+  double radius_px = 0;                                // blob radius, for the size of its target
+};
+
+struct Identification {
+  size_t target = 0;                    // index in TargetsFile::targets
+  std::array<int64_t, 4> track_of{};    // track id of each marker
+  Pose pose;                            // from the geometry check
+  double rms_px = 0;
+  CodeMatch codes;                      // the accepted code evidence
+  CodeClock clock;                      // the target's clock (estimated when free-running)
+};
+
+class TargetIdentifier {
+ public:
+  TargetIdentifier(const CameraModel& camera, const TargetsFile& targets, IdentificationOptions options = {});
+  ~TargetIdentifier();
+  TargetIdentifier(TargetIdentifier&&) noexcept;
+
+  // Identifies targets among `tracks` (no two hypotheses accepted share a track or
+  // a target). `wanted[i]`: whether target i may be identified now (false for
+  // targets already being tracked).
+  std::vector<Identification> identify(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted);
+
+  // Hypotheses scored in the last call (for diagnostics and benchmarks).
+  size_t last_hypotheses() const { return last_hypotheses_; }
+
+ private:
+  struct Hypothesis;
+  struct TrackCodes;
+  void score_tracks(const std::vector<CandidateTrack>& tracks);
+  void enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted);
+  void score_codes(Hypothesis* h) const;
+  bool geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const;
+  double allowed_errors(int counted) const;
+
+  const CameraModel& camera_;
+  const TargetsFile& targets_;
+  IdentificationOptions options_;
+  bool coded_ = false;
+  bool free_running_ = false;
+  std::vector<Code> codes_;                       // distinct codes
+  std::vector<std::array<int, 4>> code_of_;      // code index of each target's markers (-1: none)
+  std::vector<double> extent_ratio_;             // target's largest marker distance / marker radius
+  std::vector<TrackCodes> track_codes_;
+  std::vector<Hypothesis> hypotheses_;
+  size_t last_hypotheses_ = 0;
+};
+
+}  // namespace tetrapulse

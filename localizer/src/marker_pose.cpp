@@ -1,0 +1,153 @@
+#include "tetrapulse/localizer/marker_pose.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <array>
+#include <limits>
+
+#include "tetrapulse/localizer/p4p.hpp"
+
+namespace tetrapulse {
+
+const char* pose_status_name(PoseStatus status) {
+  return status == PoseStatus::kAllMarkers ? "all_markers" : "three_markers";
+}
+
+double pose_distance(const Pose& a, const Pose& b) {
+  return rotation_angle_between(a.R, b.R) + (a.t - b.t).norm() / std::max(b.t.norm(), 0.1);
+}
+
+namespace {
+
+std::optional<MarkerPose> refine(const CameraModel& camera, const Target& target, const std::vector<SeenMarker>& seen,
+                                 const Pose& initial, PoseStatus status, const MarkerPoseOptions& options) {
+  std::vector<MarkerObservation> observations;
+  for (const SeenMarker& s : seen) observations.push_back({target.markers[size_t(s.marker)].position_m, s.pixel});
+  RefinementOptions refinement;
+  refinement.marker_diameter_m = target.marker_diameter_m;
+  refinement.sphere_centroid = options.sphere_centroid;
+  refinement.sigma_px = options.centroid_sigma_px;
+  const auto refined = refine_pose(camera, observations, initial, refinement);
+  if (!refined) return std::nullopt;
+  MarkerPose out;
+  out.pose = refined->pose;
+  out.status = status;
+  for (const SeenMarker& s : seen) out.used.push_back(s.marker);
+  out.rms_px = refined->rms_px;
+  out.covariance = refined->covariance;
+  out.has_covariance = refined->has_covariance;
+  return out;
+}
+
+// The index of the smallest of `score` when it is clearly the smallest: the others
+// at least `ratio` times and `gap` larger. -1 otherwise.
+int clear_minimum(const std::array<double, 4>& score, int n, double ratio, double gap) {
+  int best = -1;
+  for (int k = 0; k < n; ++k)
+    if (best < 0 || score[size_t(k)] < score[size_t(best)]) best = k;
+  if (best < 0 || !std::isfinite(score[size_t(best)])) return -1;
+  for (int k = 0; k < n; ++k)
+    if (k != best && !(score[size_t(k)] >= ratio * score[size_t(best)] && score[size_t(k)] >= score[size_t(best)] + gap))
+      return -1;
+  return best;
+}
+
+// Three markers: the P3P pose that the fourth marker's hint or the predicted pose
+// picks out.
+std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& target,
+                                     const std::vector<SeenMarker>& seen, const std::optional<Pose>& prediction,
+                                     const std::vector<HintedMarker>& hints, const MarkerPoseOptions& options) {
+  Bearing3 x;
+  Point3x3 X;
+  for (size_t i = 0; i < 3; ++i) {
+    if (!camera.unproject(seen[i].pixel, &x[i])) return std::nullopt;
+    X[i] = target.markers[size_t(seen[i].marker)].position_m;
+  }
+  PoseCandidates poses;
+  const int n = solve_p3p(options.solver, x, X, &poses);
+  int chosen = -1;
+  // The hint: the worst of the hinted markers' distances from their hints, in units
+  // of their uncertainty.
+  if (!hints.empty()) {
+    std::array<double, 4> off{};
+    std::array<double, 4> off_px{};
+    for (int k = 0; k < n; ++k) {
+      double worst = 0, worst_px = 0;
+      for (const HintedMarker& h : hints) {
+        Eigen::Vector2d px;
+        const double d = camera.project(poses[size_t(k)].apply(target.markers[size_t(h.marker)].position_m), &px)
+                             ? (px - h.pixel).norm()
+                             : std::numeric_limits<double>::infinity();
+        worst = std::max(worst, d / std::max(h.uncertainty_px, 0.5));
+        worst_px = std::max(worst_px, d);
+      }
+      off[size_t(k)] = worst;
+      off_px[size_t(k)] = worst_px;
+    }
+    const int best = clear_minimum(off, n, 3.0, 4.0 / std::max(hints.front().uncertainty_px, 0.5));
+    if (best >= 0 && off[size_t(best)] <= 3.0) chosen = best;
+  }
+  if (chosen < 0 && prediction) {
+    std::array<double, 4> d{};
+    for (int k = 0; k < n; ++k) d[size_t(k)] = pose_distance(poses[size_t(k)], *prediction);
+    const int best = clear_minimum(d, n, 2.0, 0.0);
+    if (best >= 0 && d[size_t(best)] <= options.max_prediction_distance) chosen = best;
+  }
+  if (chosen < 0) return std::nullopt;
+  auto out = refine(camera, target, seen, poses[size_t(chosen)], PoseStatus::kThreeMarkers, options);
+  if (!out || !(out->rms_px <= options.max_rms_px)) return std::nullopt;
+  return out;
+}
+
+std::optional<MarkerPose> from_four(const CameraModel& camera, const Target& target,
+                                    const std::vector<SeenMarker>& seen, const std::optional<Pose>& prediction,
+                                    const MarkerPoseOptions& options) {
+  if (prediction) {
+    auto out = refine(camera, target, seen, *prediction, PoseStatus::kAllMarkers, options);
+    if (out && out->rms_px <= options.max_rms_px) return out;
+  }
+  Bearing4 x;
+  Point4 X;
+  for (size_t i = 0; i < 4; ++i) {
+    if (!camera.unproject(seen[i].pixel, &x[i])) return std::nullopt;
+    X[i] = target.markers[size_t(seen[i].marker)].position_m;
+  }
+  P4POptions p4p;
+  p4p.solver = options.solver;
+  p4p.camera = &camera;
+  const auto solution = solve_p4p(x, X, p4p);
+  if (!solution) return std::nullopt;
+  return refine(camera, target, seen, solution->pose, PoseStatus::kAllMarkers, options);
+}
+
+}  // namespace
+
+std::optional<MarkerPose> solve_marker_pose(const CameraModel& camera, const Target& target,
+                                            const std::vector<SeenMarker>& seen, const std::optional<Pose>& prediction,
+                                            const MarkerPoseOptions& options, const std::vector<HintedMarker>& hints) {
+  if (seen.size() == 3) return from_three(camera, target, seen, prediction, hints, options);
+  if (seen.size() != 4) return std::nullopt;
+  auto four = from_four(camera, target, seen, prediction, options);
+  if (four && four->rms_px <= options.max_rms_px) return four;
+  if (!prediction) return std::nullopt;
+  // One marker does not fit (a blob merged with another light, or a wrong track):
+  // the three others, where leaving out one marker agrees best with the prediction.
+  std::optional<MarkerPose> best;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < 4; ++k) {
+    std::vector<SeenMarker> three;
+    for (size_t i = 0; i < 4; ++i)
+      if (i != k) three.push_back(seen[i]);
+    auto candidate = from_three(camera, target, three, prediction, {}, options);
+    if (!candidate) continue;
+    const double d = pose_distance(candidate->pose, *prediction);
+    if (d < best_d) {
+      best_d = d;
+      best = candidate;
+      best->outlier = seen[k].marker;
+    }
+  }
+  return best;
+}
+
+}  // namespace tetrapulse

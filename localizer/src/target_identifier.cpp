@@ -1,0 +1,295 @@
+#include "tetrapulse/localizer/target_identifier.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "tetrapulse/localizer/p4p.hpp"
+#include "tetrapulse/localizer/pose_refinement.hpp"
+
+namespace tetrapulse {
+
+struct TargetIdentifier::TrackCodes {
+  size_t from = 0;                              // first sample used
+  std::vector<CodeMatch> matches;               // synchronized: one per code
+  std::vector<std::vector<CodeMatch>> phases;   // free-running: per code, per phase
+  std::vector<double> best_cost;                // per code (over phases when free-running)
+};
+
+struct TargetIdentifier::Hypothesis {
+  size_t target = 0;
+  std::array<int, 4> track{};  // index into the candidate tracks
+  double cost = 0;
+  CodeMatch codes;
+  int phase = 0;               // free-running: phase index of the target's clock
+  // Free-running: the best cost at a phase more than a bit away from the best
+  // ones (another alignment of the codes: a cyclic shift).
+  double shifted_cost = std::numeric_limits<double>::infinity();
+  int8_t geometry_state = 0;   // 0 not evaluated, 1 holds, -1 fails
+  Pose pose;
+  double rms_px = std::numeric_limits<double>::infinity();
+
+  bool shares(const Hypothesis& o) const {
+    if (target == o.target) return true;
+    for (int a : track)
+      for (int b : o.track)
+        if (a == b) return true;
+    return false;
+  }
+};
+
+namespace {
+
+int64_t gcd(int64_t a, int64_t b) { return b == 0 ? a : gcd(b, a % b); }
+
+}  // namespace
+
+TargetIdentifier::TargetIdentifier(const CameraModel& camera, const TargetsFile& targets,
+                                   IdentificationOptions options)
+    : camera_(camera), targets_(targets), options_(options) {
+  coded_ = targets.modulation.kind != ModulationKind::kConstant;
+  free_running_ = coded_ && !targets.timebase.synchronized;
+  for (const Target& t : targets.targets) {
+    std::array<int, 4> of{-1, -1, -1, -1};
+    double extent = 0;
+    for (size_t m = 0; m < 4; ++m) {
+      for (size_t k = 0; k < 4; ++k)
+        extent = std::max(extent, (t.markers[m].position_m - t.markers[k].position_m).norm());
+      if (!coded_ || !t.markers[m].code) continue;
+      const auto it = std::find(codes_.begin(), codes_.end(), *t.markers[m].code);
+      of[m] = int(it - codes_.begin());
+      if (it == codes_.end()) codes_.push_back(*t.markers[m].code);
+    }
+    code_of_.push_back(of);
+    extent_ratio_.push_back(t.marker_diameter_m > 0 ? extent / (t.marker_diameter_m / 2) : 1e9);
+  }
+}
+
+TargetIdentifier::~TargetIdentifier() = default;
+TargetIdentifier::TargetIdentifier(TargetIdentifier&&) noexcept = default;
+
+double TargetIdentifier::allowed_errors(int counted) const {
+  return std::floor(double(counted) / double(std::max(options_.bits_per_error, 1)));
+}
+
+void TargetIdentifier::score_tracks(const std::vector<CandidateTrack>& tracks) {
+  track_codes_.resize(tracks.size());
+  const int64_t T = targets_.timebase.bit_period_ns;
+  for (size_t i = 0; i < tracks.size(); ++i) {
+    TrackCodes& tc = track_codes_[i];
+    const auto& history = tracks[i].track->history();
+    tc.from = history.size() > size_t(options_.max_samples) ? history.size() - size_t(options_.max_samples) : 0;
+    tc.best_cost.assign(codes_.size(), 0.0);
+    if (free_running_) {
+      tc.phases.resize(codes_.size());
+      for (size_t c = 0; c < codes_.size(); ++c) {
+        match_code_phases(history, *tracks[i].bits, tc.from, 0, T, options_.phase_steps, codes_[c], &tc.phases[c]);
+        double best = std::numeric_limits<double>::infinity();
+        for (const CodeMatch& m : tc.phases[c]) best = std::min(best, m.cost());
+        tc.best_cost[c] = best;
+      }
+    } else {
+      tc.matches.resize(codes_.size());
+      const CodeClock clock = CodeClock::from(targets_.timebase);
+      for (size_t c = 0; c < codes_.size(); ++c) {
+        tc.matches[c] = match_code(history, *tracks[i].bits, tc.from, clock, codes_[c]);
+        tc.best_cost[c] = tc.matches[c].cost();
+      }
+    }
+  }
+}
+
+void TargetIdentifier::score_codes(Hypothesis* h) const {
+  const std::array<int, 4>& code = code_of_[h->target];
+  if (!coded_) return;
+  if (!free_running_) {
+    h->codes = CodeMatch{};
+    for (int m = 0; m < 4; ++m)
+      if (code[size_t(m)] >= 0) h->codes += track_codes_[size_t(h->track[size_t(m)])].matches[size_t(code[size_t(m)])];
+    h->cost = h->codes.cost();
+    return;
+  }
+  // One clock for the target's board: the phase that explains all four tracks best.
+  // Phases repeat with the least common multiple of the code lengths.
+  int64_t period = 1;
+  for (int c : code)
+    if (c >= 0) period = period / gcd(period, codes_[size_t(c)].length) * codes_[size_t(c)].length;
+  const int phases = int(std::min<int64_t>(period, 4096)) * options_.phase_steps;
+  std::vector<double> cost(size_t(phases), 0.0);
+  for (int g = 0; g < phases; ++g)
+    for (int m = 0; m < 4; ++m) {
+      if (code[size_t(m)] < 0) continue;
+      const auto& table = track_codes_[size_t(h->track[size_t(m)])].phases[size_t(code[size_t(m)])];
+      cost[size_t(g)] += table[size_t(g) % table.size()].cost();
+    }
+  const double best = *std::min_element(cost.begin(), cost.end());
+  // The middle of the run of best phases (cyclic) that contains the first best one:
+  // the bits only bound the phase, and its middle keeps clear of both ends.
+  int first = int(std::min_element(cost.begin(), cost.end()) - cost.begin());
+  int begin = first, length = 1;
+  while (length < phases && cost[size_t((begin - 1 + phases) % phases)] == best) begin = (begin - 1 + phases) % phases, ++length;
+  while (length < phases && cost[size_t((first + 1) % phases)] == best) first = (first + 1) % phases, ++length;
+  h->phase = (begin + length / 2) % phases;
+  h->cost = best;
+  h->shifted_cost = std::numeric_limits<double>::infinity();
+  for (int g = 0; g < phases; ++g) {
+    const int after_begin = (g - begin + phases) % phases;  // 0 .. phases - 1
+    const int outside = after_begin - (length - 1);          // > 0: past the run's end
+    if (outside > options_.phase_steps && phases - after_begin > options_.phase_steps) {
+      h->shifted_cost = std::min(h->shifted_cost, cost[size_t(g)]);
+    }
+  }
+  h->codes = CodeMatch{};
+  for (int m = 0; m < 4; ++m) {
+    if (code[size_t(m)] < 0) continue;
+    const auto& table = track_codes_[size_t(h->track[size_t(m)])].phases[size_t(code[size_t(m)])];
+    h->codes += table[size_t(h->phase) % table.size()];
+  }
+  h->cost = std::min(h->cost, h->codes.cost());
+}
+
+void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted) {
+  hypotheses_.clear();
+  const size_t n = tracks.size();
+  if (n < 4) return;
+  for (size_t t = 0; t < targets_.targets.size(); ++t) {
+    if (t >= wanted.size() || !wanted[t]) continue;
+    const std::array<int, 4>& code = code_of_[t];
+    // Candidates of each marker: tracks whose bits do not rule its code out.
+    std::array<std::vector<int>, 4> candidates;
+    for (size_t m = 0; m < 4; ++m)
+      for (size_t i = 0; i < n; ++i) {
+        if (code[m] >= 0) {
+          const TrackCodes& tc = track_codes_[i];
+          const int counted = free_running_ ? 0 : tc.matches[size_t(code[m])].counted;
+          if (tc.best_cost[size_t(code[m])] > allowed_errors(counted) + options_.code_margin) continue;
+        }
+        candidates[m].push_back(int(i));
+      }
+    // Tracks of one target lie within its image: at most its size over its markers' size, doubled.
+    const auto near = [&](int a, int b) {
+      const double r = std::max(tracks[size_t(a)].radius_px, tracks[size_t(b)].radius_px);
+      return (tracks[size_t(a)].pixel - tracks[size_t(b)].pixel).norm() <= 2 * extent_ratio_[t] * r + 10;
+    };
+    Hypothesis h;
+    h.target = t;
+    for (int a : candidates[0])
+      for (int b : candidates[1]) {
+        if (b == a || !near(a, b)) continue;
+        for (int c : candidates[2]) {
+          if (c == a || c == b || !near(a, c) || !near(b, c)) continue;
+          for (int d : candidates[3]) {
+            if (d == a || d == b || d == c || !near(a, d) || !near(b, d) || !near(c, d)) continue;
+            if (hypotheses_.size() >= options_.max_hypotheses) {
+              hypotheses_.clear();  // too many to weigh: wait for more bits
+              return;
+            }
+            h.track = {a, b, c, d};
+            score_codes(&h);
+            hypotheses_.push_back(h);
+          }
+        }
+      }
+  }
+}
+
+bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const {
+  if (h->geometry_state != 0) return h->geometry_state > 0;
+  h->geometry_state = -1;
+  const Target& target = targets_.targets[h->target];
+  Bearing4 x;
+  Point4 X;
+  std::vector<MarkerObservation> observations;
+  for (size_t m = 0; m < 4; ++m) {
+    const Eigen::Vector2d& px = tracks[size_t(h->track[m])].pixel;
+    if (!camera_.unproject(px, &x[m])) return false;
+    X[m] = target.markers[m].position_m;
+    observations.push_back({X[m], px});
+  }
+  P4POptions p4p;
+  p4p.solver = options_.solver;
+  p4p.camera = &camera_;
+  const auto solution = solve_p4p(x, X, p4p);
+  if (!solution) return false;
+  h->pose = solution->pose;
+  h->rms_px = solution->rms_error_px;
+  RefinementOptions refine;
+  refine.max_iterations = 10;
+  refine.sphere_centroid = false;
+  if (const auto refined = refine_pose(camera_, observations, solution->pose, refine); refined) {
+    if (refined->rms_px < h->rms_px) h->pose = refined->pose, h->rms_px = refined->rms_px;
+  }
+  if (!(h->rms_px <= options_.max_rms_px)) return false;
+  h->geometry_state = 1;
+  return true;
+}
+
+std::vector<Identification> TargetIdentifier::identify(const std::vector<CandidateTrack>& tracks,
+                                                       const std::vector<bool>& wanted) {
+  std::vector<Identification> out;
+  last_hypotheses_ = 0;
+  if (tracks.size() < 4) return out;
+  if (coded_) score_tracks(tracks);
+  enumerate(tracks, wanted);
+  last_hypotheses_ = hypotheses_.size();
+  std::stable_sort(hypotheses_.begin(), hypotheses_.end(),
+                   [](const Hypothesis& a, const Hypothesis& b) { return a.cost < b.cost; });
+
+  std::vector<char> track_blocked(tracks.size(), 0), target_blocked(targets_.targets.size(), 0);
+  const double margin = coded_ ? options_.code_margin : std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < hypotheses_.size(); ++i) {
+    Hypothesis& h = hypotheses_[i];
+    if (target_blocked[h.target]) continue;
+    if (std::any_of(h.track.begin(), h.track.end(), [&](int k) { return track_blocked[size_t(k)]; })) continue;
+    if (coded_) {
+      if (h.codes.counted < options_.min_bits || h.cost > allowed_errors(h.codes.counted)) continue;
+      bool thin = false;
+      for (size_t m = 0; m < 4; ++m) {
+        if (code_of_[h.target][m] < 0) continue;
+        const TrackCodes& tc = track_codes_[size_t(h.track[m])];
+        const CodeMatch& mm = free_running_
+                                  ? tc.phases[size_t(code_of_[h.target][m])][size_t(h.phase) %
+                                                                              tc.phases[size_t(code_of_[h.target][m])].size()]
+                                  : tc.matches[size_t(code_of_[h.target][m])];
+        thin = thin || mm.counted < options_.min_bits_per_track;
+      }
+      if (thin) continue;
+    }
+    const bool geometry_ok = geometry(tracks, &h);
+    if (std::getenv("TP_DEBUG")) {
+      fmt::print(stderr, "  hyp t{} tracks {} {} {} {} cost {} counted {} shifted {} geom {} rms {:.2f}\n", h.target,
+                 tracks[size_t(h.track[0])].track->id(), tracks[size_t(h.track[1])].track->id(),
+                 tracks[size_t(h.track[2])].track->id(), tracks[size_t(h.track[3])].track->id(), h.cost,
+                 h.codes.counted, h.shifted_cost, geometry_ok, h.rms_px);
+    }
+    if (!geometry_ok) continue;
+    // Rivals: every other hypothesis touching this one's target or tracks that the
+    // codes do not clearly reject and whose geometry is about as good.
+    bool ambiguous = h.shifted_cost < h.cost + margin;
+    for (size_t j = 0; j < hypotheses_.size() && !ambiguous; ++j) {
+      Hypothesis& r = hypotheses_[j];
+      if (!(r.cost < h.cost + margin)) break;  // sorted by cost
+      if (j == i || !h.shares(r)) continue;
+      ambiguous = geometry(tracks, &r) && r.rms_px < h.rms_px + options_.geometry_margin_px;
+    }
+    target_blocked[h.target] = 1;
+    for (int k : h.track) track_blocked[size_t(k)] = 1;
+    if (std::getenv("TP_DEBUG")) fmt::print(stderr, "  -> ambiguous {}\n", ambiguous);
+    if (ambiguous) continue;
+    Identification id;
+    id.target = h.target;
+    for (size_t m = 0; m < 4; ++m) id.track_of[m] = tracks[size_t(h.track[m])].track->id();
+    id.pose = h.pose;
+    id.rms_px = h.rms_px;
+    id.codes = h.codes;
+    id.clock = CodeClock::from(targets_.timebase);
+    if (free_running_) id.clock.origin_ns = phase_origin(0, targets_.timebase.bit_period_ns, options_.phase_steps, h.phase);
+    out.push_back(id);
+  }
+  return out;
+}
+
+}  // namespace tetrapulse
