@@ -23,8 +23,8 @@ sim_board::SimBoardOptions board_at(double ppm, int64_t power_on_ns = 0) {
   return o;
 }
 
-protocol::Config gpio_config(GpioEdgeNumbering numbering) {
-  protocol::Config c = edge_rich_config(1 * kMs);
+protocol::Config gpio_config(GpioEdgeNumbering numbering, uint32_t bit_period_ns = 1 * kMs) {
+  protocol::Config c = edge_rich_config(bit_period_ns);
   c.sync_source = SyncSource::kGpio;
   c.gpio_edge_period_ns = kEdgePeriod;
   c.gpio_edge_epoch_ns = 0;
@@ -137,6 +137,129 @@ TEST_P(CanLock, LocksWithin5sAt100ppmWith50usJitter) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ClockServo, CanLock, ::testing::Values(-100.0, -20.0, 0.0, 45.0, 100.0));
+
+}  // namespace
+}  // namespace tetrapulse::fw::testing
+
+namespace tetrapulse::fw::testing {
+namespace {
+
+// Largest shift of any LED change of any marker in [from, to) between two runs that
+// should have played the same edges.
+double max_shift_ns(const sim_board::SimBoard& a, const sim_board::SimBoard& b, int64_t from, int64_t to) {
+  double worst = 0;
+  for (uint8_t m = 0; m < kLedCount; ++m) {
+    const std::vector<long double> ta = change_times(a, m, from, to);
+    const std::vector<long double> tb = change_times(b, m, from, to);
+    if (ta.size() != tb.size()) return 1e18;  // an edge appeared or vanished
+    for (size_t i = 0; i < ta.size(); ++i) worst = std::max(worst, static_cast<double>(std::fabs(ta[i] - tb[i])));
+  }
+  return worst;
+}
+
+struct Disturbance {
+  const char* name;
+  int64_t skip_edge_at;   // -1: none
+  int64_t extra_edge_at;  // -1: none
+};
+
+class GpioOutlier : public ::testing::TestWithParam<std::tuple<Disturbance, GpioEdgeNumbering>> {};
+
+TEST_P(GpioOutlier, MovesNoLedEdgeBeyond5us) {
+  const auto [d, numbering] = GetParam();
+  const int64_t start = 1 * kSecond, end = start + 5 * kSecond;
+  TestBoard clean(board_at(100, 3'000'000));
+  TestBoard hit(board_at(100, 3'000'000));
+  for (TestBoard* b : {&clean, &hit}) {
+    b->board.advance_to(start - 300 * kMs);
+    b->configure(gpio_config(numbering));
+  }
+  run_gpio(clean, start, end);
+  run_gpio(hit, start, end, d.skip_edge_at, d.extra_edge_at);
+  const double shift = max_shift_ns(clean.board, hit.board, start + 2 * kSecond, end);
+  std::printf("[measure] gpio outlier %s (numbering %d): largest LED edge shift %.1f ns, state %d\n", d.name,
+              static_cast<int>(numbering), shift, static_cast<int>(hit.sync_state()));
+  EXPECT_LT(shift, 5'000.0);
+  EXPECT_EQ(hit.sync_state(), SyncState::kLocked);
+}
+
+constexpr int64_t kHitAt = 3 * kSecond;  // well after lock
+INSTANTIATE_TEST_SUITE_P(
+    ClockServo, GpioOutlier,
+    ::testing::Combine(::testing::Values(Disturbance{"missed edge", kHitAt, -1},
+                                         Disturbance{"doubled edge +3us", -1, kHitAt + 3'000},
+                                         Disturbance{"bounce +40us", -1, kHitAt + 40'000},
+                                         Disturbance{"spurious mid-period", -1, kHitAt + 5 * kMs},
+                                         Disturbance{"glitch 2us early", -1, kHitAt - 2'000},
+                                         Disturbance{"missed and doubled", kHitAt, kHitAt + 10 * kMs + 1'000}),
+                       ::testing::Values(GpioEdgeNumbering::kNearestCoarseTime, GpioEdgeNumbering::kCountAfterGap)));
+
+TEST(ClockServo, StaleOrUnpairedFollowUpNeverJumpsTheClock) {
+  const int64_t start = 1 * kSecond, end = start + 20 * kSecond;
+  TestBoard b(board_at(-80, 5'000'000));
+  b.board.advance_to(start - 100 * kMs);
+  b.configure(can_config());
+  run_can(b, start, start + 10 * kSecond, 100 * kMs, 50'000, 3);
+  const uint32_t rejected_before = b.board.status().sync_rejected;
+  const EdgeTiming before = edge_timing(b.board, protocol::TimeBase{0, kMs}, start + 8 * kSecond, start + 10 * kSecond);
+  // A FollowUp whose Sync was lost, a FollowUp repeated (stale), one for an old seq with a
+  // time 5 ms off, and a Sync/FollowUp pair whose tx time is 3 ms wrong (a master glitch).
+  const int64_t t = start + 10 * kSecond;
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{900, t}}, t + kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{901}}, t + 20 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{901, t + 20 * kMs}}, t + 21 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{901, t + 25 * kMs}}, t + 22 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{700, t + 30 * kMs}}, t + 31 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{902}}, t + 50 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{902, t + 53 * kMs}}, t + 51 * kMs);
+  run_can(b, t + 100 * kMs, end, 100 * kMs, 50'000, 4);
+  const EdgeTiming after = edge_timing(b.board, protocol::TimeBase{0, kMs}, t, end);
+  const protocol::StatusReport s = b.board.status();
+  std::printf("[measure] can stale/unpaired FollowUps: max |err| before %.1f us, after %.1f us; rejected %u -> %u\n",
+              before.max_abs_ns / 1e3, after.max_abs_ns / 1e3, rejected_before, s.sync_rejected);
+  EXPECT_LT(after.max_abs_ns, 20'000.0);
+  EXPECT_GE(s.sync_rejected, rejected_before + 4);
+  EXPECT_EQ(s.sync_state, SyncState::kLocked);
+}
+
+// Holdover: locked on GPIO, then no more edges. Mean LED edge error in a 100 ms window
+// 1, 10 and 60 s after the last edge, with the crystal as it was and with it moved by a
+// few ppm (temperature) when sync stopped.
+class Holdover : public ::testing::TestWithParam<std::tuple<double, double>> {};
+
+TEST_P(Holdover, DriftsOnlyByTheResidualRate) {
+  const auto [ppm, residual_ppm] = GetParam();
+  TestBoard b(board_at(ppm, 1'000'000));
+  const int64_t start = kSecond;
+  b.board.advance_to(start - 100 * kMs);
+  b.configure(gpio_config(GpioEdgeNumbering::kCountAfterGap, 10 * kMs));
+  const int64_t last = start + 5 * kSecond;
+  run_gpio(b, start, last + kEdgePeriod);
+  const int64_t stop = last + kEdgePeriod;
+  if (residual_ppm != 0) b.board.set_clock_ppm(ppm + residual_ppm);
+  double at[3] = {0, 0, 0};
+  const int64_t marks[3] = {1 * kSecond, 10 * kSecond, 60 * kSecond};
+  for (int i = 0; i < 3; ++i) {
+    b.board.advance_to(last + marks[i] + 100 * kMs);
+    at[i] = edge_timing(b.board, protocol::TimeBase{0, 10 * kMs}, last + marks[i], last + marks[i] + 100 * kMs).mean_ns;
+  }
+  const protocol::StatusReport s = b.board.status();
+  std::printf("[measure] holdover %+.0f ppm crystal, %+.1f ppm change: error after 1 s %.3f us, 10 s %.3f us, 60 s %.3f us;"
+              " state %d holdover_ms %u\n",
+              ppm, residual_ppm, at[0] / 1e3, at[1] / 1e3, at[2] / 1e3, static_cast<int>(s.sync_state), s.holdover_ms);
+  EXPECT_EQ(s.sync_state, SyncState::kHoldover);
+  EXPECT_NEAR(static_cast<double>(s.holdover_ms), static_cast<double>(b.board.now() - stop) / 1e6, 50.0);
+  // The rate learned while locked is good to well under 0.1 ppm: the drift is what the
+  // crystal changed by, times the time without sync (plus that small residue).
+  for (int i = 0; i < 3; ++i) {
+    const double expected = -residual_ppm * 1e-6 * static_cast<double>(marks[i]);
+    EXPECT_NEAR(at[i], expected, 100.0 + 0.1e-6 * static_cast<double>(marks[i])) << "after " << marks[i] / kSecond << " s";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ClockServo, Holdover,
+                         ::testing::Values(std::make_tuple(100.0, 0.0), std::make_tuple(-100.0, 0.0),
+                                           std::make_tuple(100.0, 2.0), std::make_tuple(100.0, -5.0)));
 
 }  // namespace
 }  // namespace tetrapulse::fw::testing
