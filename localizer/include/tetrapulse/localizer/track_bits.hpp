@@ -2,8 +2,10 @@
 // Reading a blob track's samples as code bits: 1, 0 or unknown, with levels that
 // adapt to each track. A marker's light changes with distance and angle far more
 // than between its two levels within a few frames, so each sample is compared
-// with the track's bright level around it: the largest detected intensity within
-// `window` samples either side, A. With r = intensity / A and the modulation's
+// with the track's bright level around it, A: first the largest detected
+// intensity within `window` samples either side; then, to follow light that
+// grows or fades, the level interpolated between the nearest samples that read
+// clearly as 1 on either side. With r = intensity / A and the modulation's
 // relative 0 level `low` (0 for on_off):
 //   r >= mid + band  -> 1,   r <= mid - band  -> 0,   otherwise unknown,
 //   mid = (1 + low) / 2,  band = band_fraction (1 - low),

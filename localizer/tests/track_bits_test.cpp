@@ -1,0 +1,108 @@
+// Reading a track's samples as bits with levels that follow the marker's light.
+#include "tetrapulse/localizer/track_bits.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace tetrapulse {
+namespace {
+
+// Samples of a marker playing `bits` (one per frame) at relative level `low` in
+// a 0 bit, whose full intensity follows `brightness(k)`, with relative noise.
+RingBuffer<TrackSample, kTrackHistory> samples(const std::string& bits, double low, double (*brightness)(int),
+                                               double noise, uint64_t seed, bool on_off = false) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  RingBuffer<TrackSample, kTrackHistory> h;
+  for (size_t k = 0; k < bits.size(); ++k) {
+    TrackSample s;
+    s.frame = int64_t(k);
+    const double level = bits[k] == '1' ? 1.0 : low;
+    s.intensity = brightness(int(k)) * (level + noise * g(rng));
+    s.measured = true;
+    s.detected = !on_off || bits[k] == '1';
+    h.push(s);
+  }
+  return h;
+}
+
+std::string read(const RingBuffer<TrackSample, kTrackHistory>& h, const Modulation& m) {
+  TrackBits bits;
+  read_track_bits(h, m, BitReading{}, 0, &bits);
+  std::string out;
+  for (size_t j = 0; j < h.size(); ++j) out += bits[j] == ReadBit::kOne ? '1' : bits[j] == ReadBit::kZero ? '0' : '?';
+  return out;
+}
+
+double steady(int) { return 5000; }
+// The camera closing in from 1.7 m to 0.7 m over 60 frames: 6 times brighter.
+double approaching(int k) {
+  const double d = 1.7 - 1.0 * k / 60.0;
+  return 5000 / (d * d);
+}
+
+const std::string kBits = "010011100101010011100101010011100101010011100101010011100101";
+
+TEST(TrackBits, TwoLevelReadsEveryBitOnceBothLevelsShowed) {
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  EXPECT_EQ(read(samples(kBits, 0.3, steady, 0.02, 1), m), kBits);
+}
+
+TEST(TrackBits, TwoLevelFollowsAMarkerGrowingSixTimesBrighter) {
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  EXPECT_EQ(read(samples(kBits, 0.3, approaching, 0.02, 2), m), kBits);
+}
+
+TEST(TrackBits, TwoLevelRunOfOnesIsUnknownNotGuessed) {
+  // A new track that has only seen 1s cannot tell them from 0s.
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  EXPECT_EQ(read(samples("111", 0.3, steady, 0.0, 3), m), "???");
+  EXPECT_EQ(read(samples("000", 0.3, steady, 0.0, 3), m), "???");
+  EXPECT_EQ(read(samples("1110", 0.3, steady, 0.0, 3), m), "1110");
+}
+
+TEST(TrackBits, OnOffDarkIsAZeroFromTheStart) {
+  const Modulation m{ModulationKind::kOnOff, 0};
+  EXPECT_EQ(read(samples("1100", 0.0, steady, 0.01, 4, true), m), "1100");
+  EXPECT_EQ(read(samples(kBits, 0.0, approaching, 0.01, 5, true), m), kBits);
+}
+
+TEST(TrackBits, IntermediateLevelIsUnknown) {
+  // An exposure half in a 1 and half in a 0 reads (1 + 0.3) / 2.
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  auto h = samples("10101", 0.3, steady, 0.0, 6);
+  h[2].intensity = 5000 * 0.65;
+  EXPECT_EQ(read(h, m), "10?01");
+}
+
+TEST(TrackBits, UnmeasuredSamplesAreUnknown) {
+  const Modulation m{ModulationKind::kOnOff, 0};
+  auto h = samples("1101", 0.0, steady, 0.0, 7, true);
+  h[2].measured = false;
+  EXPECT_EQ(read(h, m), "11?1");
+}
+
+TEST(TrackBits, ConstantModulationReadsOnes) {
+  EXPECT_EQ(read(samples("1111", 1.0, steady, 0.05, 8), Modulation{ModulationKind::kConstant, 0}), "1111");
+}
+
+TEST(TrackBits, NoiseRarelyFlipsABit) {
+  // 5 % intensity noise (a marker of a few pixels): errors, if any, are rare and
+  // most doubtful readings are unknown rather than wrong.
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  int wrong = 0, unknown = 0;
+  for (uint64_t seed = 0; seed < 100; ++seed) {
+    const std::string got = read(samples(kBits, 0.3, approaching, 0.05, 100 + seed), m);
+    for (size_t i = 0; i < kBits.size(); ++i) {
+      wrong += got[i] != '?' && got[i] != kBits[i];
+      unknown += got[i] == '?';
+    }
+  }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_LT(unknown, 60);  // of 6000
+}
+
+}  // namespace
+}  // namespace tetrapulse
