@@ -1,0 +1,243 @@
+// Identification from blob tracks: codes within their error budget name targets
+// and markers, geometry checks them, and an ambiguous hypothesis is never reported.
+// The tracks come from the real BlobTracker fed with the markers' projected
+// pixels and the light the contract says they emit during each exposure.
+#include "tetrapulse/localizer/target_identifier.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+
+#include "tetrapulse/localizer/testing/target_views.hpp"
+
+namespace tetrapulse {
+namespace {
+
+constexpr int64_t kFrameNs = 10'000'000;  // 100 fps, one frame per 10 ms bit
+constexpr int64_t kExposureNs = 2'000'000;
+constexpr int64_t kFirstStartNs = 4'000'000;  // exposures in the middle of the bits
+
+Code code(const char* text) { return *Code::parse(text, nullptr); }
+
+// Two targets of the paper's geometry, each marker with its own 12-bit code
+// (sim/scenarios/swarm.yaml's first two targets).
+TargetsFile two_coded_targets(ModulationKind kind = ModulationKind::kTwoLevel) {
+  TargetsFile f;
+  f.timebase = Timebase{true, 0, kFrameNs};
+  f.modulation = Modulation{kind, kind == ModulationKind::kTwoLevel ? 0.3 : 0.0};
+  const char* codes[2][4] = {{"010011100101", "011001001001", "100111110010", "010010010110"},
+                             {"100110101100", "101101010110", "100101100110", "011100101010"}};
+  for (int i = 0; i < 2; ++i) {
+    Target t = testing::hardware_target("paper-large.yaml");
+    t.id = 10 + i;
+    for (int m = 0; m < 4; ++m) t.markers[size_t(m)].code = code(codes[i][m]);
+    f.targets.push_back(t);
+  }
+  return f;
+}
+
+// What the camera shows: some targets at fixed poses, each with the board clock
+// its LEDs follow; `flip` corrupts a marker's light in listed frames (a read error).
+struct Shown {
+  size_t target = 0;
+  Pose pose;
+  CodeClock clock;
+  std::map<int, std::vector<int64_t>> flip;  // marker -> frames whose bit reads inverted
+};
+
+// Feeds frames [0, frames) to a tracker and asks the identifier after each one.
+// Returns, per target index, the first frame it was identified and the
+// identification then.
+struct Watch {
+  std::map<size_t, std::pair<int64_t, Identification>> first;
+  std::map<int64_t, Eigen::Vector2d> track_pixel;  // newest blob of each track
+  int identifications = 0;                         // all reported, also repeats
+};
+
+Watch watch(const CameraModel& camera, const TargetsFile& targets, const std::vector<Shown>& shown, int frames,
+        uint64_t seed, IdentificationOptions options = {}) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0, 1);
+  BlobTracker tracker;
+  TargetIdentifier identifier(camera, targets, options);
+  std::map<int64_t, TrackBits> bits;
+  Watch out;
+  for (int k = 0; k < frames; ++k) {
+    const ExposureStamp stamp{k, kFirstStartNs + k * kFrameNs, kExposureNs};
+    BlobExtraction e;
+    for (const Shown& s : shown) {
+      const Target& target = targets.targets[s.target];
+      for (int m = 0; m < 4; ++m) {
+        const Marker& marker = target.markers[size_t(m)];
+        double level = mean_emission(s.clock, targets.modulation, marker.code, stamp.timestamp_ns, kExposureNs);
+        const auto it = s.flip.find(m);
+        if (it != s.flip.end() && std::count(it->second.begin(), it->second.end(), int64_t(k))) {
+          level = level > 0.65 ? targets.modulation.low : 1.0;
+        }
+        if (!(level > 0)) continue;  // on_off: dark
+        const Eigen::Vector3d p = s.pose.apply(marker.position_m);
+        Blob b;
+        if (!camera.project(p, &b.centroid)) continue;
+        b.centroid += 0.1 * Eigen::Vector2d(noise(rng), noise(rng));
+        b.radius = camera.info().fx * target.marker_diameter_m / 2 / p.norm();
+        b.area = int(M_PI * b.radius * b.radius) + 1;
+        b.intensity = 3000 * level * (1 + 0.02 * noise(rng));
+        e.blobs.push_back(b);
+      }
+    }
+    tracker.update(stamp, e);
+    std::vector<CandidateTrack> candidates;
+    for (const BlobTrack& track : tracker.tracks()) {
+      read_track_bits(track.history(), targets.modulation, BitReading{}, 0, &bits[track.id()]);
+      CandidateTrack c;
+      c.track = &track;
+      c.bits = &bits[track.id()];
+      c.pixel = track.position();
+      c.radius_px = track.last_blob().radius;
+      candidates.push_back(c);
+      out.track_pixel[track.id()] = track.position();
+    }
+    std::vector<bool> wanted(targets.targets.size());
+    for (size_t t = 0; t < wanted.size(); ++t) wanted[t] = !out.first.count(t);
+    for (const Identification& id : identifier.identify(candidates, wanted)) {
+      ++out.identifications;
+      if (!out.first.count(id.target)) out.first[id.target] = {k, id};
+    }
+  }
+  return out;
+}
+
+// Whether each marker's track sits on that marker's pixel (the right correspondence).
+void expect_correct(const CameraModel& camera, const TargetsFile& targets, const Shown& s, const Watch& r) {
+  ASSERT_TRUE(r.first.count(s.target)) << "target " << s.target << " never identified";
+  const Identification& id = r.first.at(s.target).second;
+  for (int m = 0; m < 4; ++m) {
+    Eigen::Vector2d px;
+    ASSERT_TRUE(camera.project(s.pose.apply(targets.targets[s.target].markers[size_t(m)].position_m), &px));
+    EXPECT_LT((r.track_pixel.at(id.track_of[size_t(m)]) - px).norm(), 1.0) << "marker " << m;
+  }
+  EXPECT_LT((id.pose.t - s.pose.t).norm(), 0.02);
+}
+
+// Two poses side by side, 1.2 m away, turned differently.
+std::vector<Pose> two_poses() {
+  return {Pose{so3_exp(Eigen::Vector3d(2.6, 0.2, 0.3)), Eigen::Vector3d(-0.35, 0.05, 1.2)},
+          Pose{so3_exp(Eigen::Vector3d(2.9, -0.3, -0.9)), Eigen::Vector3d(0.35, -0.05, 1.3)}};
+}
+
+class Identify : public ::testing::Test {
+ protected:
+  CameraModel camera{testing::wide_plumb_bob_camera()};
+};
+
+TEST_F(Identify, SynchronizedCodesNameBothTargetsAndMarkersWithinOneCodeLength) {
+  for (ModulationKind kind : {ModulationKind::kTwoLevel, ModulationKind::kOnOff}) {
+    const TargetsFile targets = two_coded_targets(kind);
+    const auto poses = two_poses();
+    const CodeClock clock = CodeClock::from(targets.timebase);
+    const std::vector<Shown> shown{{0, poses[0], clock, {}}, {1, poses[1], clock, {}}};
+    const Watch r = watch(camera, targets, shown, 36, 1);
+    for (const Shown& s : shown) {
+      expect_correct(camera, targets, s, r);
+      EXPECT_LE(r.first.at(s.target).first, 12) << modulation_kind_name(kind);  // one code length, in frames
+    }
+  }
+}
+
+TEST_F(Identify, SameGeometryDifferentCodesNeverSwapped) {
+  // Random poses of the two (geometrically identical) targets: every
+  // identification names the right target and markers.
+  std::mt19937_64 rng(7);
+  const TargetsFile targets = two_coded_targets();
+  const CodeClock clock = CodeClock::from(targets.timebase);
+  for (int trial = 0; trial < 12; ++trial) {
+    const size_t which = size_t(trial % 2);
+    const Pose pose = testing::random_visible_pose(rng, camera, targets.targets[which], 0.7, 2.0, 20);
+    const std::vector<Shown> shown{{which, pose, clock, {}}};
+    const Watch r = watch(camera, targets, shown, 30, 100 + uint64_t(trial));
+    EXPECT_FALSE(r.first.count(1 - which)) << trial;
+    expect_correct(camera, targets, shown[0], r);
+  }
+}
+
+TEST_F(Identify, AReadErrorWithinTheBudgetIsTolerated) {
+  // One wrong bit on one marker: 1 error allowed per 16 bits read, so the
+  // target is identified once enough bits are read, and correctly.
+  const TargetsFile targets = two_coded_targets();
+  const CodeClock clock = CodeClock::from(targets.timebase);
+  const Shown s{0, two_poses()[0], clock, {{2, {4}}}};
+  const Watch r = watch(camera, targets, {s}, 36, 2);
+  expect_correct(camera, targets, s, r);
+}
+
+TEST_F(Identify, CodesBeyondTheirRadiusAreNotIdentified) {
+  // The board plays the codes shifted by 5 bits (another phase of every code):
+  // no target's codes fit within the error budget, so nothing is reported,
+  // although the geometry is a perfect match.
+  const TargetsFile targets = two_coded_targets();
+  CodeClock shifted = CodeClock::from(targets.timebase);
+  shifted.origin_ns += 5 * kFrameNs;
+  const Watch r = watch(camera, targets, {{0, two_poses()[0], shifted, {}}}, 48, 3);
+  EXPECT_EQ(r.identifications, 0);
+}
+
+TEST_F(Identify, TwoTargetsAlikeInCodesAndGeometryAreNeverReported) {
+  // Target 1 is a copy of target 0, codes included: whichever is shown, the
+  // evidence cannot tell them apart, so neither is named.
+  TargetsFile targets = two_coded_targets();
+  targets.targets[1].markers = targets.targets[0].markers;
+  const CodeClock clock = CodeClock::from(targets.timebase);
+  const Watch r = watch(camera, targets, {{0, two_poses()[0], clock, {}}}, 48, 4);
+  EXPECT_EQ(r.identifications, 0);
+}
+
+TEST_F(Identify, ConstantMarkersAreIdentifiedByGeometryAloneOrNotAtAll) {
+  // Random views of one passive target: the permutation that fits names the
+  // markers; where another permutation fits about as well (views in which the
+  // geometry is ambiguous) nothing is reported, and that stays rare.
+  TargetsFile targets = two_coded_targets(ModulationKind::kConstant);
+  targets.targets.resize(1);
+  std::mt19937_64 rng(11);
+  int identified = 0;
+  constexpr int kTrials = 40;
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const Pose pose = testing::random_visible_pose(rng, camera, targets.targets[0], 0.7, 2.0, 20);
+    const Shown s{0, pose, CodeClock::from(targets.timebase), {}};
+    const Watch r = watch(camera, targets, {s}, 2, 20 + uint64_t(trial));
+    if (r.first.empty()) continue;
+    ++identified;
+    expect_correct(camera, targets, s, r);
+  }
+  EXPECT_GE(identified, kTrials * 3 / 4);
+}
+
+TEST_F(Identify, ConstantMarkersOfTwoTargetsAlikeAreNeverReported) {
+  // Passive targets of the same geometry: geometry fits both equally.
+  const TargetsFile targets = two_coded_targets(ModulationKind::kConstant);
+  const Watch r = watch(camera, targets, {{0, two_poses()[0], CodeClock::from(targets.timebase), {}}}, 10, 5);
+  EXPECT_EQ(r.identifications, 0);
+}
+
+TEST_F(Identify, FreeRunningBoardsPhaseIsFoundWithinThreeCodePeriods) {
+  // Boards running free with unknown origins (and 150 ppm fast): identified,
+  // correctly, with a clock whose bit edges agree with the board's.
+  TargetsFile targets = two_coded_targets();
+  targets.timebase.synchronized = false;
+  const auto poses = two_poses();
+  const CodeClock a{37'300'000, kFrameNs, 1 + 150e-6}, b{-81'700'000, kFrameNs, 1 - 120e-6};
+  const std::vector<Shown> shown{{0, poses[0], a, {}}, {1, poses[1], b, {}}};
+  const Watch r = watch(camera, targets, shown, 60, 6);
+  for (const Shown& s : shown) {
+    expect_correct(camera, targets, s, r);
+    const auto& [frame, id] = r.first.at(s.target);
+    EXPECT_LE(frame, 3 * 12);
+    // Same bit number, modulo the code length, at this frame's mid-exposure.
+    const int64_t mid = kFirstStartNs + frame * kFrameNs + kExposureNs / 2;
+    EXPECT_EQ(((id.clock.bit_number(mid) - s.clock.bit_number(mid)) % 12 + 12) % 12, 0) << s.target;
+  }
+}
+
+}  // namespace
+}  // namespace tetrapulse
