@@ -11,5 +11,6 @@ void add_sim_command(CLI::App& app, int* result);
 void add_target_command(CLI::App& app, int* result);
 void add_localize_command(CLI::App& app, int* result);
 void add_eval_command(CLI::App& app, int* result);
+void add_demo_command(CLI::App& app, int* result);
 
 }  // namespace tetrapulse::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   add_target_command(app, &result);
   add_localize_command(app, &result);
   add_eval_command(app, &result);
+  add_demo_command(app, &result);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,118 @@
+// The localizer on the virtual rig: every built-in scenario, CI-sized (its
+// ci_count frames, its own seed), rendered at test time, localized and held to
+// issue 4's acceptance lines. Measured numbers go to the test log.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+
+#include "scenario_run.hpp"
+#include "tetrapulse/sim/builtin_scenarios.hpp"
+#include "tetrapulse/sim/scenario_yaml.hpp"
+
+namespace tetrapulse::system_testing {
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+
+struct Acceptance {
+  const char* scenario;
+  double max_position_m;     // absolute bound on the mean (infinity: none)
+  double max_orientation_deg;
+  double min_coverage;
+};
+
+const Acceptance kScenarios[] = {
+    {"paper-exp1", 0.005, 0.3, 0.99}, {"paper-far", 0.02, 0.5, 0.99}, {"passive", INFINITY, INFINITY, 0.95},
+    {"swarm", INFINITY, INFINITY, 0.99}, {"unsync", INFINITY, INFINITY, 0.99}, {"clutter", INFINITY, INFINITY, 0.99},
+    {"fisheye", INFINITY, INFINITY, 0.99},
+};
+
+void PrintTo(const Acceptance& a, std::ostream* os) { *os << a.scenario; }
+
+class Scenarios : public ::testing::TestWithParam<Acceptance> {};
+
+TEST_P(Scenarios, MeetTheAcceptanceLines) {
+  const Acceptance& a = GetParam();
+  auto scenario = sim::load_scenario(a.scenario);
+  ASSERT_TRUE(scenario) << scenario.error().what();
+  const auto run = run_scenario(*scenario, scenario->seed, scenario->frames.ci_count);
+  ASSERT_TRUE(run) << run.error();
+  const Evaluation& e = run->evaluation;
+  const TargetEvaluation& all = e.overall;
+  const OracleComparison oracle = compare_with_oracle(*run);
+  const bool free_running = !scenario->targets.timebase.synchronized;
+  const int64_t latency_bound =
+      run->code_length_frames == 0 ? 1 : (free_running ? 3 : 1) * run->code_length_frames;
+  std::printf(
+      "%s: %zu frames, %zu poses; mean error %.2f mm / %.3f deg; oracle over %zu pairs %.2f mm / %.3f deg "
+      "(localizer on them %.2f mm / %.3f deg); coverage %.4f (%zu of %zu); misidentified %zu; "
+      "max latency %lld frames (bound %lld)\n",
+      a.scenario, run->frames.size(), all.rows, 1e3 * all.position_m.mean, all.orientation_rad.mean / kDeg,
+      oracle.pairs, 1e3 * oracle.oracle.position_m, oracle.oracle.orientation_rad / kDeg,
+      1e3 * oracle.localizer.position_m, oracle.localizer.orientation_rad / kDeg, all.coverage(), all.covered_frames,
+      all.visible_frames, all.misidentified, (long long)all.max_latency_frames, (long long)latency_bound);
+
+  EXPECT_EQ(all.misidentified, 0u);
+  EXPECT_GE(all.coverage(), a.min_coverage);
+  EXPECT_GT(all.rows, 0u);
+  EXPECT_GT(all.visible_frames_total, 0u) << "no target visible: the scenario tests nothing";
+  for (const TargetEvaluation& t : e.targets) EXPECT_LE(t.max_latency_frames, latency_bound) << "target " << t.target;
+  EXPECT_LE(all.position_m.mean, a.max_position_m);
+  EXPECT_LE(all.orientation_rad.mean, a.max_orientation_deg * kDeg);
+  ASSERT_GE(oracle.pairs, 5u) << "too few frames where the oracle saw enough markers";
+  EXPECT_LE(oracle.localizer.position_m, 1.5 * oracle.oracle.position_m);
+  EXPECT_LE(oracle.localizer.orientation_rad, 1.5 * oracle.oracle.orientation_rad);
+
+  // Through an occlusion of one marker, a target tracked before keeps its pose.
+  int occluded_frames = 0, occlusions = 0;
+  for (size_t t = 0; t < scenario->simulation.size(); ++t) {
+    const int id = scenario->targets.targets[t].id;
+    for (size_t f = 1; f < run->frames.size(); ++f) {
+      const FrameRecord& frame = run->frames[f];
+      int hidden = 0;
+      for (const sim::TimeIntervals& occluded : scenario->simulation[t].occluded) {
+        bool any = false;
+        occluded.split(frame.timestamp_ns, frame.timestamp_ns + frame.exposure_ns,
+                       [&](int64_t, int64_t, bool inside) { any = any || inside; });
+        hidden += any;
+      }
+      if (f == 1)
+        for (const sim::TimeIntervals& occluded : scenario->simulation[t].occluded)
+          occlusions += int(occluded.intervals().size());
+      if (hidden != 1) continue;
+      const auto had = [&](int64_t frame_number) {
+        for (const PoseRecord& p : run->poses)
+          if (p.frame == frame_number && p.target == id) return true;
+        return false;
+      };
+      if (!had(run->frames[f - 1].frame)) continue;
+      ++occluded_frames;
+      EXPECT_TRUE(had(frame.frame)) << "target " << id << " lost in frame " << frame.frame << " (one marker hidden)";
+    }
+  }
+  std::printf("%s: %d frames with one marker of a tracked target occluded\n", a.scenario, occluded_frames);
+  if (occlusions > 0) {
+    EXPECT_GT(occluded_frames, 0) << "the occlusions fall outside the CI-sized run";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Builtin, Scenarios, ::testing::ValuesIn(kScenarios),
+                         [](const ::testing::TestParamInfo<Acceptance>& param) {
+                           std::string name = param.param.scenario;
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
+
+TEST(Scenarios, EveryBuiltinIsCovered) {
+  for (const sim::BuiltinScenario& b : sim::builtin_scenarios()) {
+    bool found = false;
+    for (const Acceptance& a : kScenarios) found = found || b.name == a.scenario;
+    EXPECT_TRUE(found) << b.name;
+  }
+}
+
+}  // namespace
+}  // namespace tetrapulse::system_testing
