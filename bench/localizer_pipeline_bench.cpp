@@ -1,0 +1,205 @@
+// The whole localizer per frame, next to the AprilTag 3 detector, on 752x480
+// frames of the same scene size. One thread (cv::setNumThreads(1), AprilTag
+// nthreads = 1).
+//   BM_LocalizerFullFrame:  every frame searched whole (blobs over the image,
+//                           tracks, bits, pose of the 4 tracked targets); a
+//                           fifth target that is never in view keeps the
+//                           whole-image search going every frame, as while a
+//                           target is missing.
+//   BM_LocalizerAcquisition: a fresh localizer over its first 12 frames (whole
+//                           image searches, identification of all four targets).
+//   BM_LocalizerTracking:   the four targets tracked (ROIs only), per frame.
+//   BM_AprilTag36h11/D:     apriltag_detector_detect with quad_decimate D on a
+//                           frame showing one tag36h11 whose black square is
+//                           0.30 m, the span of the paper's large target, 1.5 m
+//                           away and tilted 20 degrees.
+// Frames come from the virtual rig (four_targets_scenario.hpp), rendered once.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <apriltag/apriltag.h>
+#include <apriltag/tag36h11.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "four_targets_scenario.hpp"
+#include "tetrapulse/localizer/localizer.hpp"
+#include "tetrapulse/sim/frame_renderer.hpp"
+#include "tetrapulse/sim/random.hpp"
+#include "tetrapulse/sim/scenario_yaml.hpp"
+#include "tetrapulse/sim/scene_builder.hpp"
+
+namespace {
+
+using namespace tetrapulse;
+
+constexpr int kFrames = 240;
+
+struct Sequence {
+  sim::Scenario scenario;
+  std::vector<cv::Mat> images;
+  std::vector<int64_t> starts;
+  int64_t exposure_ns = 0;
+};
+
+const Sequence& sequence() {
+  static const Sequence s = [] {
+    Sequence q;
+    q.scenario = *sim::parse_scenario(bench::four_targets_scenario(), "bench");
+    const sim::Scene scene = sim::build_scene(q.scenario, 1);
+    sim::SensorModel sensor(q.scenario.camera.width, q.scenario.camera.height, q.scenario.sensor, 1);
+    sim::FrameRenderer renderer(scene, q.scenario.render, sensor);
+    q.exposure_ns = q.scenario.frames.exposure_ns;
+    for (int k = 0; k < kFrames; ++k) {
+      const int64_t start = q.scenario.frames.start_ns + k * q.scenario.frames.period_ns;
+      cv::Mat image;
+      renderer.render(start, q.exposure_ns, sim::stream_seed(1, sim::kStreamSensorNoise, uint64_t(k)), &image);
+      q.images.push_back(image);
+      q.starts.push_back(start);
+    }
+    return q;
+  }();
+  return s;
+}
+
+// Runs frames [from, to) through `localizer`.
+void feed(Localizer* localizer, int from, int to) {
+  const Sequence& s = sequence();
+  for (int k = from; k < to; ++k) benchmark::DoNotOptimize(localizer->process(s.images[size_t(k)], s.starts[size_t(k)], s.exposure_ns));
+}
+
+// Times one frame per iteration from frame `warm_up` on, restarting the
+// localizer (untimed) at the end of the sequence.
+void time_frames(benchmark::State& state, const TargetsFile& targets, const LocalizerOptions& options, int warm_up) {
+  cv::setNumThreads(1);
+  const Sequence& s = sequence();
+  auto localizer = std::make_unique<Localizer>(s.scenario.camera, targets, options);
+  feed(localizer.get(), 0, warm_up);
+  int k = warm_up;
+  int64_t poses = 0, searched = 0;
+  for (auto _ : state) {
+    if (k == kFrames) {
+      state.PauseTiming();
+      localizer = std::make_unique<Localizer>(s.scenario.camera, targets, options);
+      feed(localizer.get(), 0, warm_up);
+      k = warm_up;
+      state.ResumeTiming();
+    }
+    auto out = localizer->process(s.images[size_t(k)], s.starts[size_t(k)], s.exposure_ns);
+    poses += out ? int64_t(out->size()) : 0;
+    searched += localizer->searched_whole_image();
+    ++k;
+  }
+  state.counters["poses_per_frame"] = double(poses) / double(state.iterations());
+  state.counters["whole_image_share"] = double(searched) / double(state.iterations());
+}
+
+void BM_LocalizerFullFrame(benchmark::State& state) {
+  TargetsFile targets = sequence().scenario.targets;
+  Target absent = targets.targets[0];
+  absent.id = 99;
+  for (Marker& m : absent.markers) m.code = Code::parse("000111010110", nullptr);
+  targets.targets.push_back(absent);
+  LocalizerOptions options;
+  options.full_search_interval = 1;
+  time_frames(state, targets, options, 30);
+}
+BENCHMARK(BM_LocalizerFullFrame)->Unit(benchmark::kMicrosecond);
+
+void BM_LocalizerTracking(benchmark::State& state) { time_frames(state, sequence().scenario.targets, {}, 30); }
+BENCHMARK(BM_LocalizerTracking)->Unit(benchmark::kMicrosecond);
+
+void BM_LocalizerAcquisition(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const Sequence& s = sequence();
+  constexpr int kAcquisitionFrames = 12;
+  int64_t identified = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto localizer = std::make_unique<Localizer>(s.scenario.camera, s.scenario.targets);
+    state.ResumeTiming();
+    for (int k = 0; k < kAcquisitionFrames; ++k) {
+      auto out = localizer->process(s.images[size_t(k)], s.starts[size_t(k)], s.exposure_ns);
+      if (k == kAcquisitionFrames - 1 && out) identified += int64_t(out->size());
+    }
+  }
+  state.counters["per_frame_us"] =
+      benchmark::Counter(double(kAcquisitionFrames) * 1e-6, benchmark::Counter::kIsIterationInvariantRate |
+                                                                 benchmark::Counter::kInvert);
+  state.counters["identified_by_frame_12"] = double(identified) / double(state.iterations());
+}
+BENCHMARK(BM_LocalizerAcquisition)->Unit(benchmark::kMicrosecond);
+
+// A 752x480 frame like the rig's (dark textured background, noise) with one
+// tag36h11 (id 7) drawn in through the camera: black square 0.30 m, 1.5 m away.
+cv::Mat apriltag_frame(apriltag_family_t* family) {
+  const Sequence& s = sequence();
+  const CameraInfo& cam = s.scenario.camera;
+  image_u8_t* tag = apriltag_to_image(family, 7);  // total_width cells, border cells white
+  const int cells = tag->width;
+  cv::Mat tag_image(tag->height, tag->width, CV_8UC1);
+  for (int y = 0; y < tag->height; ++y)
+    for (int x = 0; x < tag->width; ++x) tag_image.at<uint8_t>(y, x) = tag->buf[y * tag->stride + x];
+  // image_u8_destroy is not exported by Debian's libapriltag; it frees the two blocks.
+  std::free(tag->buf);
+  std::free(tag);
+  // Pixel corners of the tag image in the target plane: the black square spans
+  // cells [1, cells - 1) and is 0.30 m wide.
+  const double cell_m = 0.30 / double(family->width_at_border);
+  const double half = 0.5 * cells * cell_m;
+  const cv::Matx33d R = cv::Matx33d(1, 0, 0, 0, std::cos(0.35), -std::sin(0.35), 0, std::sin(0.35), std::cos(0.35));
+  const cv::Vec3d t(0.1, -0.05, 1.5);
+  std::vector<cv::Point3d> corners = {{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}};
+  std::vector<cv::Point2f> image_corners;
+  const cv::Matx33d K(cam.fx, 0, cam.cx, 0, cam.fy, cam.cy, 0, 0, 1);
+  for (const cv::Point3d& c : corners) {
+    const cv::Vec3d p = R * cv::Vec3d(c.x, c.y, c.z) + t;
+    const cv::Vec3d q = K * p;
+    image_corners.emplace_back(float(q[0] / q[2]), float(q[1] / q[2]));
+  }
+  const std::vector<cv::Point2f> source = {{0, 0}, {float(cells), 0}, {float(cells), float(cells)}, {0, float(cells)}};
+  const cv::Mat H = cv::getPerspectiveTransform(source, image_corners);
+  cv::Mat frame = s.images[0].clone();
+  cv::Mat warped(frame.size(), CV_8UC1), mask(frame.size(), CV_8UC1, cv::Scalar(0));
+  cv::Mat lit;
+  tag_image.convertTo(lit, CV_8U, 150.0 / 255.0, 20);  // a lit tag: black 20, white 170
+  cv::warpPerspective(lit, warped, H, frame.size(), cv::INTER_LINEAR);
+  cv::warpPerspective(cv::Mat(tag_image.size(), CV_8UC1, cv::Scalar(255)), mask, H, frame.size(), cv::INTER_NEAREST);
+  warped.copyTo(frame, mask);
+  cv::Mat noise(frame.size(), CV_16SC1);
+  cv::randn(noise, 0, 3);
+  cv::Mat noisy;
+  frame.convertTo(noisy, CV_16S);
+  noisy += noise;
+  noisy.convertTo(frame, CV_8U);
+  return frame;
+}
+
+void BM_AprilTag36h11(benchmark::State& state) {
+  apriltag_family_t* family = tag36h11_create();
+  apriltag_detector_t* detector = apriltag_detector_create();
+  apriltag_detector_add_family(detector, family);
+  detector->nthreads = 1;
+  detector->quad_decimate = float(state.range(0));
+  cv::Mat frame = apriltag_frame(family);
+  image_u8_t image{frame.cols, frame.rows, int(frame.step), frame.data};
+  int64_t found = 0;
+  for (auto _ : state) {
+    zarray_t* detections = apriltag_detector_detect(detector, &image);
+    found += zarray_size(detections);
+    apriltag_detections_destroy(detections);
+  }
+  state.counters["tags_per_frame"] = double(found) / double(state.iterations());
+  apriltag_detector_destroy(detector);
+  tag36h11_destroy(family);
+}
+BENCHMARK(BM_AprilTag36h11)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
