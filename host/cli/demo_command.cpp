@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 
 struct DemoArgs {
   std::string out = "out/demo";
-  double seconds = 10;
+  double seconds = 8;
   bool quiet = false;
 };
 
@@ -144,6 +144,7 @@ DatasetResult<void> write_png(const std::string& path, const cv::Mat& image) {
 struct ScenarioOutcome {
   Evaluation evaluation;
   std::string folder;
+  size_t frames = 0;
 };
 
 // One scenario: simulate, localize, evaluate, draw. Errors name the file at fault.
@@ -175,7 +176,7 @@ DatasetResult<ScenarioOutcome> run_scenario(const std::string& name, const DemoA
   auto strip = overlay_strip(*dataset, *localized);
   if (!strip) return tl::unexpected(strip.error());
   if (auto r = write_png((fs::path(folder) / "overlay.png").string(), *strip); !r) return tl::unexpected(r.error());
-  return ScenarioOutcome{*evaluation, folder};
+  return ScenarioOutcome{*evaluation, folder, dataset->frames().size()};
 }
 
 int run_demo(const DemoArgs& a, const DemoSimulation& simulate) {
@@ -185,7 +186,7 @@ int run_demo(const DemoArgs& a, const DemoSimulation& simulate) {
     auto outcome = run_scenario(name, a, simulate);
     if (!outcome) return fail(kExitFailure, outcome.error().what());
     const Evaluation& e = outcome->evaluation;
-    fmt::print("{}\n", evaluation_table(e, fmt::format("{} ({} frames)", name, e.overall.visible_frames_total)));
+    fmt::print("{}\n", evaluation_table(e, fmt::format("{} ({} frames)", name, outcome->frames)));
     fmt::print("  wrote {0}/poses.csv, {0}/trajectory.png, {0}/overlay.png\n\n", outcome->folder);
     markdown += evaluation_markdown_row(e, name);
   }

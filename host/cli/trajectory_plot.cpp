@@ -64,8 +64,11 @@ struct Panel {
     cv::rectangle(*img, area, kInk, 1);
     cv::putText(*img, a_label, cv::Point(area.x + area.width / 2 - 30, area.y + area.height + 38), kFont, 0.5, kInk, 1,
                 cv::LINE_AA);
-    cv::putText(*img, b_label, cv::Point(area.x - 50, area.y - 10), kFont, 0.5, kInk, 1, cv::LINE_AA);
-    cv::putText(*img, title, cv::Point(area.x + 5, area.y - 10), kFont, 0.5, kInk, 1, cv::LINE_AA);
+    cv::putText(*img, b_label, cv::Point(area.x - 60, area.y - 8), kFont, 0.45, kInk, 1, cv::LINE_AA);
+    int baseline = 0;
+    const cv::Size size = cv::getTextSize(title, kFont, 0.55, 1, &baseline);
+    cv::putText(*img, title, cv::Point(area.x + (area.width - size.width) / 2, area.y - 10), kFont, 0.55, kInk, 1,
+                cv::LINE_AA);
   }
 };
 
@@ -85,8 +88,8 @@ void dots(cv::Mat* img, const Panel& panel, const std::vector<TrajectoryPoint>& 
 
 cv::Mat plot_trajectories(const std::vector<Trajectory>& trajectories, const std::string& title,
                           const std::string& frame) {
-  cv::Mat img(560, 1560, CV_8UC3, cv::Scalar(255, 255, 255));
-  Panel top{cv::Rect(80, 70, 440, 420)}, side{cv::Rect(600, 70, 440, 420)}, error{cv::Rect(1110, 70, 420, 420)};
+  cv::Mat img(580, 1560, CV_8UC3, cv::Scalar(255, 255, 255));
+  Panel top{cv::Rect(80, 95, 440, 420)}, side{cv::Rect(600, 95, 440, 420)}, error{cv::Rect(1110, 95, 420, 420)};
   constexpr double kInf = std::numeric_limits<double>::infinity();
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = Eigen::Vector3d::Constant(-kInf);
   double t_max = 0, e_max = 0;
@@ -116,7 +119,7 @@ cv::Mat plot_trajectories(const std::vector<Trajectory>& trajectories, const std
     }
   }
   cv::putText(img, title, cv::Point(80, 30), kFont, 0.65, kInk, 1, cv::LINE_AA);
-  cv::putText(img, frame, cv::Point(80, 52), kFont, 0.45, kInk, 1, cv::LINE_AA);
+  cv::putText(img, frame, cv::Point(80, 54), kFont, 0.45, kInk, 1, cv::LINE_AA);
   // Legend.
   cv::line(img, cv::Point(1110, 28), cv::Point(1140, 28), kTruth, 2);
   cv::putText(img, "ground truth", cv::Point(1148, 33), kFont, 0.45, kInk, 1, cv::LINE_AA);
