@@ -334,9 +334,14 @@ void Localizer::State::read_bits() {
   // Forget the bits of tracks that ended.
   for (auto it = bits.begin(); it != bits.end();) it = tracker.find(it->first) ? std::next(it) : bits.erase(it);
   if (!coded) return;
+  // Bits are kept per history index, and a full history shifts by one sample a
+  // frame: every sample a reader uses is read again. Identification reads the
+  // newest max_samples of unclaimed tracks; code checks the newest verify_samples
+  // of claimed ones (all max_samples for a free-running clock's re-estimation).
   const int needed = std::max(options.identification.max_samples, options.verify_samples);
   for (const BlobTrack& track : tracker.tracks()) {
-    read_track_bits(track.history(), targets.modulation, options.bits, bits_from(track, needed), &bits[track.id()]);
+    const int samples = free_running || !owner(track.id()) ? needed : options.verify_samples;
+    read_track_bits(track.history(), targets.modulation, options.bits, bits_from(track, samples), &bits[track.id()]);
   }
 }
 
@@ -349,7 +354,8 @@ void Localizer::State::re_estimate_clock(size_t t, int64_t mid) {
     if (m.code) length = std::max(length, m.code->length);
   if (mid - tt.clock_checked_ns < int64_t(length) * T) return;
   tt.clock_checked_ns = mid;
-  // Origins within half a bit of the current one, T / 32 apart.
+  // Origins within half a bit of the current one, T / 32 apart, over the samples read_bits keeps current.
+  const int needed = std::max(options.identification.max_samples, options.verify_samples);
   constexpr int kSteps = 16;
   std::array<double, 2 * kSteps + 1> cost{};
   for (int k = -kSteps; k <= kSteps; ++k) {
@@ -360,7 +366,9 @@ void Localizer::State::re_estimate_clock(size_t t, int64_t mid) {
       const BlobTrack* track = tracker.find(tt.track_of[size_t(m)]);
       if (!track || !target.markers[size_t(m)].code) continue;
       cost[size_t(k + kSteps)] +=
-          match_code(track->history(), bits[track->id()], 0, clock, *target.markers[size_t(m)].code).cost();
+          match_code(track->history(), bits[track->id()], bits_from(*track, needed), clock,
+                     *target.markers[size_t(m)].code)
+              .cost();
     }
   }
   const double best = *std::min_element(cost.begin(), cost.end());
@@ -425,16 +433,6 @@ void Localizer::State::identify(int64_t mid) {
     candidates.push_back(c);
   }
   if (candidates.size() < 4) return;
-  if (std::getenv("TP_DEBUG")) {
-    fmt::print(stderr, "f{} identify: {} candidates\n", stamp.frame, candidates.size());
-    for (const CandidateTrack& c : candidates) {
-      std::string b;
-      for (size_t j = 0; j < c.track->history().size(); ++j)
-        b += (*c.bits)[j] == ReadBit::kOne ? '1' : (*c.bits)[j] == ReadBit::kZero ? '0' : '?';
-      fmt::print(stderr, "   track {} at {:.1f},{:.1f} r {:.1f} n {} bits {}\n", c.track->id(), c.pixel.x(), c.pixel.y(),
-                 c.radius_px, c.track->history().size(), b);
-    }
-  }
   for (const Identification& id : identifier.identify(candidates, wanted)) {
     TargetTrack& tt = target_tracks[id.target];
     tt.forget();
@@ -478,11 +476,6 @@ std::vector<TargetPose> Localizer::State::solve_poses(int64_t mid) {
     }
     const auto solved = seen.size() >= 3 ? solve_marker_pose(camera, target, seen, tt.predicted, pose_options, hints)
                                          : std::nullopt;
-    if (std::getenv("TP_DEBUG")) {
-      fmt::print(stderr, "f{} t{} seen {} pred {} tracks [{} {} {} {}] -> {}\n", stamp.frame, target.id, seen.size(),
-                 tt.predicted.has_value(), tt.track_of[0], tt.track_of[1], tt.track_of[2], tt.track_of[3],
-                 solved ? fmt::format("{:.2f}px {}", solved->rms_px, solved->used.size()) : "none");
-    }
     if (!solved) {
       if (mid - tt.last_pose_ns > options.forget_after_ns) tt.forget();
       continue;
@@ -541,17 +534,6 @@ tl::expected<std::vector<TargetPose>, LocalizerError> Localizer::State::process(
   predict(mid);
   build_rois(mid);
   if (auto r = extract(image); !r) return tl::unexpected(r.error());
-  if (std::getenv("TP_DEBUG")) {
-    for (const RoiMeasurement& m : extraction.rois) {
-      const auto o = m.tag >= 0 ? owner(m.tag) : std::nullopt;
-      if (!o) continue;
-      const BlobRoi* r = nullptr;
-      for (const BlobRoi& roi : rois) if (roi.tag == m.tag) r = &roi;
-      fmt::print(stderr, "f{} roi t{} m{} track {} at {:.1f},{:.1f} r {:.1f} -> {} {:.1f},{:.1f} I {:.0f}\n", stamp.frame,
-                 targets.targets[o->first].id, o->second, m.tag, r->center.x(), r->center.y(), r->radius,
-                 roi_status_name(m.status), m.position.x(), m.position.y(), m.intensity);
-    }
-  }
   tracker.update(stamp, extraction, gates);
   maintain_assignments();
   read_bits();

@@ -156,7 +156,6 @@ DatasetResult<Evaluation> evaluate_poses(const RigDataset& dataset, const std::v
         if (ep.first_report && visible[k].first < *ep.first_report) continue;
         ++e.visible_frames;
         e.covered_frames += visible[k].second;
-        if (!visible[k].second && std::getenv("TP_DEBUG")) fmt::print(stderr, "missing t{} f{}\n", target.id, visible[k].first);
       }
     }
     add_latency(episodes, &e);

@@ -1,8 +1,6 @@
 #include "tetrapulse/localizer/target_identifier.hpp"
 
 #include <algorithm>
-#include <cstdlib>
-#include <fmt/format.h>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -259,12 +257,6 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
       if (thin) continue;
     }
     const bool geometry_ok = geometry(tracks, &h);
-    if (std::getenv("TP_DEBUG")) {
-      fmt::print(stderr, "  hyp t{} tracks {} {} {} {} cost {} counted {} shifted {} geom {} rms {:.2f}\n", h.target,
-                 tracks[size_t(h.track[0])].track->id(), tracks[size_t(h.track[1])].track->id(),
-                 tracks[size_t(h.track[2])].track->id(), tracks[size_t(h.track[3])].track->id(), h.cost,
-                 h.codes.counted, h.shifted_cost, geometry_ok, h.rms_px);
-    }
     if (!geometry_ok) continue;
     // Rivals: every other hypothesis touching this one's target or tracks that the
     // codes do not clearly reject and whose geometry is about as good.
@@ -277,7 +269,6 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
     }
     target_blocked[h.target] = 1;
     for (int k : h.track) track_blocked[size_t(k)] = 1;
-    if (std::getenv("TP_DEBUG")) fmt::print(stderr, "  -> ambiguous {}\n", ambiguous);
     if (ambiguous) continue;
     Identification id;
     id.target = h.target;
