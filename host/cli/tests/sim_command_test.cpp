@@ -2,14 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
+#include "cli_run.hpp"
 #include "tetrapulse/localizer/rig_dataset.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 
@@ -18,23 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using cli_testing::CliRun;
 
-CliRun run(const std::string& args) {
-  CliRun r;
-  const std::string cmd = std::string(TETRAPULSE_CLI) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
-}
+CliRun run(const std::string& args) { return cli_testing::run_cli(args); }
 
 class TempDir {
  public:
