@@ -106,6 +106,26 @@ INSTANTIATE_TEST_SUITE_P(Builtin, Scenarios, ::testing::ValuesIn(kScenarios),
                            return name;
                          });
 
+TEST(Scenarios, PaperExp1WithKalmanPredictionAndKneipP3P) {
+  // The options beside the defaults: the constant-velocity Kalman filter and the
+  // paper's P3P solver (Kneip 2011) hold the same lines as the defaults.
+  auto scenario = sim::load_scenario("paper-exp1");
+  ASSERT_TRUE(scenario) << scenario.error().what();
+  LocalizerOptions options;
+  options.prediction.model = PredictionModel::kConstantVelocity;
+  options.p3p = P3PSolver::kKneip;
+  const auto run = run_scenario(*scenario, scenario->seed, scenario->frames.ci_count, options);
+  ASSERT_TRUE(run) << run.error();
+  const TargetEvaluation& all = run->evaluation.overall;
+  std::printf("paper-exp1 (kalman, kneip): %zu poses; mean error %.2f mm / %.3f deg; coverage %.4f; misidentified %zu\n",
+              all.rows, 1e3 * all.position_m.mean, all.orientation_rad.mean / kDeg, all.coverage(), all.misidentified);
+  EXPECT_EQ(all.misidentified, 0u);
+  EXPECT_GE(all.coverage(), 0.99);
+  EXPECT_LE(all.max_latency_frames, run->code_length_frames);
+  EXPECT_LE(all.position_m.mean, 0.005);
+  EXPECT_LE(all.orientation_rad.mean, 0.3 * kDeg);
+}
+
 TEST(Scenarios, EveryBuiltinIsCovered) {
   for (const sim::BuiltinScenario& b : sim::builtin_scenarios()) {
     bool found = false;
