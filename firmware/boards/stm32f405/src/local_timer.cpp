@@ -43,7 +43,7 @@ void LocalTimer::start(uint32_t timer_clock_hz) {
   nvic::enable(nvic::kTim2, kIrqPriority);
 }
 
-uint64_t LocalTimer::now() const {
+uint64_t LocalTimer::read() const {
   const tim::Registers& t = tim::tim2();
   InterruptLock lock;
   uint32_t high = high_;
@@ -55,7 +55,7 @@ uint64_t LocalTimer::now() const {
 }
 
 uint64_t LocalTimer::extend_past(uint32_t counter_value) const {
-  const uint64_t n = now();
+  const uint64_t n = read();
   return n - static_cast<uint32_t>(static_cast<uint32_t>(n) - counter_value);
 }
 
@@ -83,32 +83,12 @@ void LocalTimer::disable_capture() {
   t.CCER = t.CCER & ~tim::ccer_enable(kCaptureChannel);
 }
 
-void LocalTimer::set_compare_callback(CompareCallback callback, void* context) {
-  InterruptLock lock;
-  compare_ = callback;
-  compare_context_ = context;
-}
-
 bool LocalTimer::arm_compare(uint64_t at) {
   tim::Registers& t = tim::tim2();
   InterruptLock lock;
   t.CCR[kCompareChannel] = static_cast<uint32_t>(at);
-  t.SR = ~tim::kCc1if;
-  t.DIER = t.DIER | tim::kCc1if;
-  // Checked after arming: if the counter is already at or past `at`, the match will not
-  // come until the counter wraps, so the caller must act now.
-  const uint64_t n = now();
-  if (static_cast<int64_t>(at - n) <= 0 && (t.SR & tim::kCc1if) == 0) {
-    t.DIER = t.DIER & ~tim::kCc1if;
-    return false;
-  }
-  return true;
-}
-
-void LocalTimer::disarm_compare() {
-  tim::Registers& t = tim::tim2();
-  t.DIER = t.DIER & ~tim::kCc1if;
-  t.SR = ~tim::kCc1if;
+  // Checked after writing: a counter already at or past `at` matches only after a wrap.
+  return static_cast<int64_t>(at - read()) > 0;
 }
 
 void LocalTimer::on_interrupt() {
@@ -123,11 +103,6 @@ void LocalTimer::on_interrupt() {
     const uint32_t captured = t.CCR[kCaptureChannel];  // reading clears CC2IF
     t.SR = ~tim::kCc2of;
     if (capture_ != nullptr) capture_(capture_context_, extend_past(captured));
-  }
-  if ((sr & tim::kCc1if & enabled) != 0) {
-    t.DIER = t.DIER & ~tim::kCc1if;
-    t.SR = ~tim::kCc1if;
-    if (compare_ != nullptr) compare_(compare_context_);
   }
 }
 

@@ -32,12 +32,13 @@ void SVC_Handler() TP_WEAK_HANDLER;
 void DebugMon_Handler() TP_WEAK_HANDLER;
 void PendSV_Handler() TP_WEAK_HANDLER;
 void SysTick_Handler() TP_WEAK_HANDLER;
+void CAN1_TX_IRQHandler() TP_WEAK_HANDLER;
 void CAN1_RX0_IRQHandler() TP_WEAK_HANDLER;
 void CAN1_RX1_IRQHandler() TP_WEAK_HANDLER;
 void CAN1_SCE_IRQHandler() TP_WEAK_HANDLER;
 void TIM2_IRQHandler() TP_WEAK_HANDLER;
 void USART1_IRQHandler() TP_WEAK_HANDLER;
-void TIM8_CC_IRQHandler() TP_WEAK_HANDLER;
+void TIM8_UP_TIM13_IRQHandler() TP_WEAK_HANDLER;
 void OTG_FS_IRQHandler() TP_WEAK_HANDLER;
 #undef TP_WEAK_HANDLER
 }
@@ -69,12 +70,13 @@ constexpr VectorTable make_table() {
   t.vectors[13] = PendSV_Handler;
   t.vectors[14] = SysTick_Handler;
   namespace nvic = tetrapulse::stm32f405::nvic;
+  t.vectors[irq(nvic::kCan1Tx)] = CAN1_TX_IRQHandler;
   t.vectors[irq(nvic::kCan1Rx0)] = CAN1_RX0_IRQHandler;
   t.vectors[irq(nvic::kCan1Rx1)] = CAN1_RX1_IRQHandler;
   t.vectors[irq(nvic::kCan1Sce)] = CAN1_SCE_IRQHandler;
   t.vectors[irq(nvic::kTim2)] = TIM2_IRQHandler;
   t.vectors[irq(nvic::kUsart1)] = USART1_IRQHandler;
-  t.vectors[irq(nvic::kTim8Cc)] = TIM8_CC_IRQHandler;
+  t.vectors[irq(nvic::kTim8Up)] = TIM8_UP_TIM13_IRQHandler;
   t.vectors[irq(nvic::kOtgFs)] = OTG_FS_IRQHandler;
   return t;
 }

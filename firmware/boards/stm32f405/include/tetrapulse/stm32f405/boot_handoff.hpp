@@ -14,13 +14,13 @@ struct BootHandoff {
   uint32_t request;             // application -> bootloader: BootRequest
   uint32_t bootloader_version;  // bootloader -> application: pack_version()
   uint32_t booted_slot;         // bootloader -> application: slot it started (0..1)
-  uint32_t check;               // ~(magic ^ request ^ bootloader_version ^ booted_slot)
+  uint32_t watchdog_resets;     // application's count since power-on; the bootloader keeps it
+  uint32_t check;               // ~(magic ^ request ^ bootloader_version ^ booted_slot ^ watchdog_resets)
 };
 
 enum class BootRequest : uint32_t {
   kNone = 0,
   kStayInBootloader = 0xB0071D1E,  // DFU_DETACH or Reboot{bootloader}
-  kTryNewSlot = 0x5107C4A9,        // Reboot{application} after a verified update
 };
 
 constexpr uint32_t kHandoffMagic = 0x54504842;  // "BHPT"
@@ -29,7 +29,7 @@ constexpr uint32_t kHandoffAddress = kSramBase + kSramSize - 32;
 inline BootHandoff& boot_handoff() { return *reinterpret_cast<BootHandoff*>(kHandoffAddress); }
 
 inline uint32_t handoff_check(const BootHandoff& h) {
-  return ~(h.magic ^ h.request ^ h.bootloader_version ^ h.booted_slot);
+  return ~(h.magic ^ h.request ^ h.bootloader_version ^ h.booted_slot ^ h.watchdog_resets);
 }
 inline bool handoff_valid(const BootHandoff& h) {
   return h.magic == kHandoffMagic && h.check == handoff_check(h);

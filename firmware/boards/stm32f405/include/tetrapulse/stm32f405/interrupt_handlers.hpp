@@ -4,7 +4,8 @@
 extern "C" {
 void TIM2_IRQHandler();
 void USART1_IRQHandler();
-void TIM8_CC_IRQHandler();
+void TIM8_UP_TIM13_IRQHandler();
+void CAN1_TX_IRQHandler();
 void CAN1_RX0_IRQHandler();
 void CAN1_RX1_IRQHandler();
 void CAN1_SCE_IRQHandler();

@@ -19,10 +19,11 @@ inline Reg& ICER(unsigned n) { return *reinterpret_cast<Reg*>(0xE000E180 + 4 * n
 inline volatile uint8_t& IPR(unsigned irq) { return *reinterpret_cast<volatile uint8_t*>(0xE000E400 + irq); }
 
 // Interrupt numbers (RM0090 table 61, vector position)
+constexpr unsigned kCan1Tx = 19;
 constexpr unsigned kCan1Rx0 = 20;
 constexpr unsigned kCan1Rx1 = 21;
 constexpr unsigned kCan1Sce = 22;
-constexpr unsigned kTim8Cc = 46;
+constexpr unsigned kTim8Up = 44;  // TIM8_UP_TIM13
 constexpr unsigned kTim2 = 28;
 constexpr unsigned kUsart1 = 37;
 constexpr unsigned kOtgFs = 67;

@@ -69,5 +69,7 @@ constexpr uint32_t ccer_enable(unsigned channel) { return bit(4 * channel); }
 constexpr uint32_t ccer_polarity(unsigned channel) { return bit(4 * channel + 1); }  // CCxP: falling edge for inputs
 // BDTR
 constexpr uint32_t kBdtrMoe = bit(15);
+// RCR (TIM1/TIM8): counter overflows per update event, minus one (8 bits).
+constexpr uint32_t kRcrMax = 255;
 
 }  // namespace tetrapulse::stm32f405::tim
