@@ -37,6 +37,9 @@ class ClockMapping {
   // that is before the counter started).
   Tick to_local(int64_t rig_ns) const;
 
+  // Rig ns spanned by `ticks` local ticks at rate correction `correction` (any sign).
+  int64_t span_ns(int64_t ticks, int64_t correction) const;
+
   // Moves the anchor to `t` keeping rig(t) (continuous), then applies `correction`.
   void set_rate(Tick t, int64_t correction);
   // Makes rig(t) = rig_ns (a step), keeping the rate.

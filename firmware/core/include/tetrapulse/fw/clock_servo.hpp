@@ -101,6 +101,8 @@ class ClockServo {
   Sample first_;
   Sample last_accepted_;
   bool have_accepted_ = false;
+  bool ever_sampled_ = false;  // a sample arrived since restart()
+  bool was_locked_ = false;    // locked since restart(): silence is holdover, not acquisition
   int64_t integral_ = 0;     // 2^-40 units
   int64_t last_error_ = 0;   // ns
   uint8_t good_in_row_ = 0;

@@ -30,8 +30,7 @@ class CommandHandler {
   CommandReply handle(protocol::ByteView message, Tick rx_tick, LinkKind link, uint8_t* out, size_t capacity);
 
  private:
-  protocol::Result<protocol::Body> execute(const protocol::Message& request, Tick rx_tick, LinkKind link,
-                                           CommandReply& reply, uint16_t* detail);
+  protocol::Result<protocol::Body> execute(const protocol::Message& request, CommandReply& reply, uint16_t* detail);
 
   BoardState& board_;
 };

@@ -36,7 +36,7 @@ struct NumberedEdge {
 
 class GpioEdgeNumberer {
  public:
-  explicit GpioEdgeNumberer(uint32_t tick_hz) : tick_hz_(tick_hz) {}
+  explicit GpioEdgeNumberer(uint32_t tick_hz) : nominal_(tick_hz) {}
 
   // New edge rule; forgets earlier edges. `now` is when capture (re)starts.
   void configure(const protocol::Config& config, Tick now);
@@ -50,7 +50,7 @@ class GpioEdgeNumberer {
   int64_t edge_time(int64_t k) const;
   int64_t nearest_k(int64_t rig_ns) const;
 
-  uint32_t tick_hz_;
+  ClockMapping nominal_;  // the counter at its nominal rate, for gaps between edges
   int64_t epoch_ns_ = 0;
   int64_t period_ns_ = 1;
   protocol::GpioEdgeNumbering numbering_ = protocol::GpioEdgeNumbering::kNearestCoarseTime;

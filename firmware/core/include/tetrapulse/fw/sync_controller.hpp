@@ -32,8 +32,6 @@ class SyncController {
   void report(Tick now, protocol::StatusReport& status) const;
 
  private:
-  void count(SampleVerdict verdict);
-
   ClockServo servo_;
   GpioEdgeNumberer numberer_;
   SyncPairing pairing_;       // CAN: servo samples
@@ -41,7 +39,8 @@ class SyncController {
   protocol::SyncSource source_ = protocol::SyncSource::kNone;
   protocol::Config sync_fields_;
   bool configured_ = false;
-  uint32_t spurious_edges_ = 0;
+  uint32_t spurious_edges_ = 0;  // edges refused before they became samples
+  uint32_t unpaired_ = 0;        // CAN FollowUps without their Sync (or stale)
 };
 
 }  // namespace tetrapulse::fw

@@ -27,7 +27,7 @@ class UpdateReceiver {
   protocol::Result<uint32_t> begin(const protocol::UpdateBegin& request);
   protocol::Result<uint32_t> chunk(const protocol::UpdateChunk& request, uint16_t* detail);
   protocol::Result<uint32_t> verify();
-  void abort();
+  protocol::Status abort();
 
   protocol::UpdateState state() const { return state_; }
   // True while an update is writing flash (PersistConfig and FactoryReset are refused).
