@@ -47,7 +47,7 @@ int main() {
   const bool can_up = bx_can().start(clocks.apb1_hz, BxCan::kDefaultBitrate, clock);
 
   static ChipControl chip;
-  chip.start(cause);
+  chip.start(cause, clocks.source != ClockSource::kUnreadable);
   static InternalFlash flash;
   static SyncCapture sync(clock);
   static fw::CanLink can_link(bx_can(), clock.tick_hz(), tp::kCanFirstBoardNode);

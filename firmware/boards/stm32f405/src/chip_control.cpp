@@ -6,7 +6,8 @@
 
 namespace tetrapulse::stm32f405 {
 
-void ChipControl::start(const ResetCause& cause) {
+void ChipControl::start(const ResetCause& cause, bool has_system_memory) {
+  if (has_system_memory) unique_id_ = unique_id();
   BootHandoff& h = boot_handoff();
   if (handoff_valid(h)) {
     bootloader_version_ = h.bootloader_version;
