@@ -24,9 +24,9 @@ ServoTuning ServoTuning::gpio() { return ServoTuning{}; }
 
 ServoTuning ServoTuning::can() {
   ServoTuning t;
-  t.kp_256 = 48;
-  t.ki_256 = 4;
-  t.window = 8;
+  t.kp_256 = 32;
+  t.ki_256 = 2;
+  t.window = 16;
   t.lock_threshold_ns = 20'000;
   t.lock_count = 10;
   t.gate_acquiring_ns = 2'000'000;
@@ -199,6 +199,13 @@ protocol::SyncState ClockServo::state(Tick now) const {
                       mapping_.to_rig(now) - mapping_.to_rig(last_accepted_.local) > tuning_.holdover_after_ns;
   if (silent && was_locked_) return SyncState::kHoldover;
   return phase_ == Phase::kLocked ? SyncState::kLocked : SyncState::kAcquiring;
+}
+
+int32_t ClockServo::rate_ppb() const {
+  // The frequency estimate (the integral), not the applied rate with its transient
+  // phase correction. The counter's rate error r satisfies (1 + c)(1 + r) = 1: r ~ -c.
+  const int64_t ppb = -mul_shr_signed(integral_, 1'000'000'000, kCorrectionShift);
+  return static_cast<int32_t>(clamp64(ppb, INT32_MIN, INT32_MAX));
 }
 
 int32_t ClockServo::offset_ns() const {

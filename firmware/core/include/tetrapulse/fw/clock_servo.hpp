@@ -77,7 +77,7 @@ class ClockServo {
 
   protocol::SyncState state(Tick now) const;
   int32_t offset_ns() const;  // last measured error, saturated
-  int32_t rate_ppb() const { return mapping_.rate_ppb(); }
+  int32_t rate_ppb() const;  // the frequency estimate: the counter's rate error, ppb
   uint32_t holdover_ms(Tick now) const;
   uint32_t accepted() const { return accepted_; }
   uint32_t rejected() const { return rejected_; }
