@@ -203,9 +203,8 @@ protocol::SyncState ClockServo::state(Tick now) const {
 
 int32_t ClockServo::rate_ppb() const {
   // The frequency estimate (the integral), not the applied rate with its transient
-  // phase correction. The counter's rate error r satisfies (1 + c)(1 + r) = 1: r ~ -c.
-  const int64_t ppb = -mul_shr_signed(integral_, 1'000'000'000, kCorrectionShift);
-  return static_cast<int32_t>(clamp64(ppb, INT32_MIN, INT32_MAX));
+  // phase correction.
+  return correction_to_ppb(integral_);
 }
 
 int32_t ClockServo::offset_ns() const {
