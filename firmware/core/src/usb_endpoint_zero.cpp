@@ -79,24 +79,45 @@ UsbEndpointZero::Action UsbEndpointZero::on_in_complete() {
   }
 }
 
+uint8_t* UsbEndpointZero::out_target(size_t* room) {
+  if (stage_ != Stage::kDataOut) {
+    *room = 0;
+    return reply_.buffer;
+  }
+  const size_t left = setup_.length - total_;
+  *room = left < kPacket ? left : kPacket;
+  return reply_.buffer + total_;
+}
+
 UsbEndpointZero::Action UsbEndpointZero::on_out_packet(tp::ByteView packet) {
+  size_t room = 0;
+  uint8_t* into = out_target(&room);
+  if (packet.size <= room) {
+    for (size_t i = 0; i < packet.size; ++i) into[i] = packet[i];
+  }
+  return on_out_received(packet.size);
+}
+
+UsbEndpointZero::Action UsbEndpointZero::on_out_received(size_t size) {
   switch (stage_) {
-    case Stage::kDataOut: {
-      if (packet.size > kPacket || packet.size > setup_.length - total_) {
-        reset();
-        return Action::kStall;
-      }
-      for (size_t i = 0; i < packet.size; ++i) reply_.buffer[total_ + i] = packet[i];
-      total_ += packet.size;
-      if (total_ < setup_.length && packet.size == kPacket) return Action::kReceivePacket;
-      return finish_out_stage();
-    }
+    case Stage::kDataOut:
+      return take_out(size);
     case Stage::kDataIn:    // the host ended the data stage early (it had what it wanted)
     case Stage::kStatusOut:
       return status_done();
     default:
       return Action::kNone;
   }
+}
+
+UsbEndpointZero::Action UsbEndpointZero::take_out(size_t size) {
+  if (size > kPacket || size > setup_.length - total_) {
+    reset();
+    return Action::kStall;
+  }
+  total_ += size;
+  if (total_ < setup_.length && size == kPacket) return Action::kReceivePacket;
+  return finish_out_stage();
 }
 
 UsbEndpointZero::Action UsbEndpointZero::finish_out_stage() {

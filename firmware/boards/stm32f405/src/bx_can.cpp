@@ -45,6 +45,8 @@ uint32_t filter_word(uint32_t id) { return (id << can::kIdExtShift) | can::kIdId
 
 }  // namespace
 
+BxCan::BxCan() {}
+
 BxCan& bx_can() {
   static BxCan controller;
   return controller;
@@ -162,6 +164,12 @@ void BxCan::on_status_interrupt() {
   if (((esr >> can::kEsrLec) & 7u) != 0 && errors_ != UINT16_MAX) errors_ = errors_ + 1;
   c.ESR = 0;  // LEC back to "no error" (software may write it)
   c.MSR = bit(2);  // ERRI: write 1 to clear
+}
+
+bool BxCan::tx_idle() const {
+  if (!running_) return true;
+  InterruptLock lock;
+  return tx_count_ == 0 && (can::can1().TSR & can::kTsrTmeAll) == can::kTsrTmeAll;
 }
 
 bool BxCan::do_bus_off() const { return (can::can1().ESR & can::kEsrBoff) != 0; }

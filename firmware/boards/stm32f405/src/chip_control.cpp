@@ -26,6 +26,7 @@ uint8_t ChipControl::do_hw_revision() const { return kHardwareRevision; }
 
 void ChipControl::do_reboot(protocol::RebootMode mode) {
   usart1().drain();  // the Ack leaves before the reset (SPEC §2.3 Reboot)
+  if (before_reset_ != nullptr) before_reset_(before_reset_context_);
   BootHandoff& h = boot_handoff();
   if (!handoff_valid(h)) {
     h = BootHandoff{};

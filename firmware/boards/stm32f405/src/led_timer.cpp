@@ -17,6 +17,8 @@ constexpr Signal kLedPins[fw::kLedCount] = {Signal::kLed0, Signal::kLed1, Signal
 
 }  // namespace
 
+LedTimer::LedTimer() {}
+
 LedTimer& led_timer() {
   static LedTimer leds;
   return leds;

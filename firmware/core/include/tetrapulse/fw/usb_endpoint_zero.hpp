@@ -11,6 +11,8 @@
 //   Action::kReceivePacket: arm EP0 OUT for one data packet
 //   Action::kSendStatus / kReceiveStatus: a zero-length status packet in / out
 //   Action::kStall: stall EP0 both ways until the next SETUP
+// A driver that reads its receive FIFO itself can put an OUT packet straight where it
+// belongs (out_target(), then on_out_received()) instead of copying it (on_out_packet()).
 //
 // The IN data stage sends min(answer, wLength) bytes in 64-byte packets and ends with a
 // zero-length packet when that is shorter than wLength and a multiple of 64. The OUT data
@@ -34,6 +36,11 @@ class UsbEndpointZero {
   Action on_setup(const uint8_t (&packet)[kUsbSetupSize]);
   Action on_in_complete();
   Action on_out_packet(protocol::ByteView packet);
+  // Where the next OUT packet's bytes go: `*room` bytes at the returned address (0 bytes,
+  // and any address, when only a status ZLP is expected). A packet longer than `*room`
+  // is dropped by the driver and reported with its full size (on_out_received stalls).
+  uint8_t* out_target(size_t* room);
+  Action on_out_received(size_t size);
   // USB reset: forgets the transfer in progress (UsbControl's bus_reset is the driver's call).
   void reset();
 
@@ -44,6 +51,7 @@ class UsbEndpointZero {
   enum class Stage : uint8_t { kIdle, kDataIn, kDataOut, kStatusIn, kStatusOut };
 
   Action finish_out_stage();
+  Action take_out(size_t size);
   Action status_done();
 
   UsbControl& control_;

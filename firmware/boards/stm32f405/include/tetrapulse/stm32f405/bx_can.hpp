@@ -22,6 +22,10 @@ struct ReceivedFrame {
 
 class BxCan final : public fw::CanBus {
  public:
+  // Not constexpr on purpose: a constant-initialised object with a vtable lands in .data
+  // and costs its whole size in flash as well (its copy there); this one is built at first
+  // use in zeroed RAM (.bss) instead.
+  BxCan();
   static constexpr uint32_t kDefaultBitrate = 1'000'000;
 
   // Starts CAN1 at `bitrate` from the APB1 clock; false when the controller does not
@@ -31,6 +35,8 @@ class BxCan final : public fw::CanBus {
 
   // Main loop: the next received frame.
   bool receive(ReceivedFrame* out) { return rx_.pop(out); }
+  // Every queued frame has left the transmit mailboxes (or the controller is not running).
+  bool tx_idle() const;
 
   void on_receive_interrupt();
   void on_transmit_interrupt();
@@ -47,7 +53,8 @@ class BxCan final : public fw::CanBus {
   LocalTimer* clock_ = nullptr;
   bool running_ = false;
   fw::SpscQueue<ReceivedFrame, 32> rx_;
-  protocol::CanFrame tx_[64];  // > kCanMaxFramesPerTransfer
+  // One whole transfer (46 frames at most) and a little more: an answer is queued whole.
+  protocol::CanFrame tx_[protocol::kCanMaxFramesPerTransfer + 2];
   size_t tx_head_ = 0;
   size_t tx_count_ = 0;
   volatile uint16_t errors_ = 0;

@@ -15,6 +15,12 @@ class ChipControl final : public fw::SystemControl {
   void start(const ResetCause& cause, bool has_system_memory);
   // The slot the bootloader said it started; kNoSlot when started some other way.
   uint8_t booted_slot() const { return booted_slot_; }
+  // Runs before every reset this class makes, after USART1 has drained: the application
+  // lets an answer queued on USB leave (SPEC §2.3 Reboot: the Ack goes out first).
+  void set_before_reset(void (*hook)(void* context), void* context) {
+    before_reset_ = hook;
+    before_reset_context_ = context;
+  }
 
  private:
   void do_reboot(protocol::RebootMode mode) override;
@@ -29,6 +35,8 @@ class ChipControl final : public fw::SystemControl {
   uint32_t bootloader_version_ = 0;
   uint8_t booted_slot_ = 0xFF;
   uint16_t watchdog_resets_ = 0;
+  void (*before_reset_)(void*) = nullptr;
+  void* before_reset_context_ = nullptr;
 };
 
 }  // namespace tetrapulse::stm32f405

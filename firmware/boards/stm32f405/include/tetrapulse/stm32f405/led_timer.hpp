@@ -30,6 +30,10 @@ namespace tetrapulse::stm32f405 {
 
 class LedTimer final : public fw::LedDriver {
  public:
+  // Not constexpr on purpose: a constant-initialised object with a vtable lands in .data
+  // and costs its whole size in flash as well (its copy there); this one is built at first
+  // use in zeroed RAM (.bss) instead.
+  LedTimer();
   static constexpr size_t kQueueDepth = 8;
   static constexpr uint32_t kPwmHz = 100'000;
 

@@ -11,8 +11,16 @@ namespace tetrapulse::stm32f405 {
 
 class Usart1 final : public fw::SerialPort {
  public:
-  static constexpr size_t kRxQueue = 512;
-  static constexpr size_t kTxQueue = 1024;  // three whole frames (SPEC §6.1: 325 bytes)
+  // Not constexpr on purpose: a constant-initialised object with a vtable lands in .data
+  // and costs its whole size in flash as well (its copy there); this one is built at first
+  // use in zeroed RAM (.bss) instead.
+  Usart1();
+  // 22 ms of bytes at 115200 baud; the main loop empties it every pass, well under 1 ms
+  // apart (while flash is erased the core stalls and bytes are lost whatever the size).
+  static constexpr size_t kRxQueue = 256;
+  // One whole frame (SPEC §6.1: 325 bytes) and room to spare: a host waits for each answer
+  // before it sends the next request, and the board sends nothing on its own over UART.
+  static constexpr size_t kTxQueue = 512;
 
   // `apb2_hz` as configure_clocks() reported it.
   void start(uint32_t apb2_hz, uint32_t baud);

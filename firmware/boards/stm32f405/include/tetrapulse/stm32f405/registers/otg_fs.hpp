@@ -1,6 +1,10 @@
 #pragma once
 // USB on-the-go full-speed core in device mode (RM0090 §34.16), at 0x50000000.
 // Offsets rather than one struct: the block spans 0x20000 bytes with sparse registers.
+// The core has 1.25 KB (320 words) of FIFO RAM of its own, shared by the receive FIFO and
+// one transmit FIFO per IN endpoint; every FIFO access is one 32-bit word.
+#include <cstddef>
+
 #include "tetrapulse/stm32f405/registers/mmio.hpp"
 
 namespace tetrapulse::stm32f405::otg {
@@ -39,11 +43,15 @@ inline Reg& DOEPTSIZ(unsigned ep) { return at(0xB10 + 0x20 * ep); }
 inline Reg& PCGCCTL() { return at(0xE00); }
 inline Reg& FIFO(unsigned ep) { return at(0x1000 * (ep + 1)); }
 
+constexpr size_t kFifoWords = 320;
+
 // GAHBCFG
-constexpr uint32_t kGahbGint = bit(0);
+constexpr uint32_t kGahbGint = bit(0);        // interrupt line to the NVIC (this board polls)
 // GUSBCFG
-constexpr uint32_t kGusbPhysel = bit(6);
-constexpr unsigned kGusbTrdt = 10;            // 4 bits: turnaround time
+constexpr uint32_t kGusbPhysel = bit(6);      // full-speed serial transceiver (always 1 here)
+constexpr unsigned kGusbTrdt = 10;            // 4 bits: turnaround time in PHY clocks
+constexpr uint32_t kTrdtAhbAbove32MHz = 6;    // RM0090 GUSBCFG: TRDT for AHB >= 32 MHz
+constexpr uint32_t kGusbForceHost = bit(29);
 constexpr uint32_t kGusbForceDevice = bit(30);
 // GRSTCTL
 constexpr uint32_t kGrstCsrst = bit(0);
@@ -53,6 +61,9 @@ constexpr unsigned kGrstTxfnum = 6;           // 5 bits; 0x10 = all
 constexpr uint32_t kGrstAhbidl = bit(31);
 // GINTSTS / GINTMSK
 constexpr uint32_t kGintRxflvl = bit(4);
+constexpr uint32_t kGintGonakeff = bit(7);    // global OUT NAK in effect
+constexpr uint32_t kGintCmod = bit(0);        // current mode: 1 host, 0 device
+constexpr uint32_t kGintEsusp = bit(10);
 constexpr uint32_t kGintUsbsusp = bit(11);
 constexpr uint32_t kGintUsbrst = bit(12);
 constexpr uint32_t kGintEnumdne = bit(13);
@@ -70,18 +81,29 @@ constexpr uint32_t kPktSetupData = 6;
 // GCCFG
 constexpr uint32_t kGccfgPwrdwn = bit(16);    // transceiver on
 constexpr uint32_t kGccfgVbusbsen = bit(19);
-constexpr uint32_t kGccfgNovbussens = bit(21);
+constexpr uint32_t kGccfgVbusasen = bit(18);
+constexpr uint32_t kGccfgNovbussens = bit(21);  // no VBUS sensing: the device is connected when powered
 // DCFG
 constexpr unsigned kDcfgDspd = 0;             // 2 bits: 3 = full speed (internal PHY)
+constexpr uint32_t kDspdFullSpeed = 3;
 constexpr unsigned kDcfgDad = 4;              // 7 bits: device address
 // DCTL
+constexpr uint32_t kDctlRwusig = bit(0);
 constexpr uint32_t kDctlSdis = bit(1);        // soft disconnect
 constexpr uint32_t kDctlCginak = bit(8);
+constexpr uint32_t kDctlSgonak = bit(9);
 constexpr uint32_t kDctlCgonak = bit(10);
+// DSTS
+constexpr uint32_t kDstsSuspsts = bit(0);
+// DAINT / DAINTMSK: IN endpoint n at bit n, OUT endpoint n at bit 16 + n
+constexpr uint32_t daint_in(unsigned ep) { return bit(ep); }
+constexpr uint32_t daint_out(unsigned ep) { return bit(16 + ep); }
 // DIEPCTL / DOEPCTL
 constexpr unsigned kEpMpsiz = 0;              // EP0: 2 bits (0 = 64 bytes); others: 11 bits
-constexpr uint32_t kEpUsbaep = bit(15);
-constexpr unsigned kEpType = 18;              // 2 bits: 2 = bulk
+constexpr uint32_t kEpUsbaep = bit(15);       // endpoint active in this configuration
+constexpr uint32_t kEpNaksts = bit(17);
+constexpr unsigned kEpType = 18;              // 2 bits
+constexpr uint32_t kEpTypeBulk = 2;
 constexpr uint32_t kEpStall = bit(21);
 constexpr unsigned kEpTxfnum = 22;            // 4 bits (IN)
 constexpr uint32_t kEpCnak = bit(26);
@@ -91,6 +113,9 @@ constexpr uint32_t kEpEpdis = bit(30);
 constexpr uint32_t kEpEpena = bit(31);
 // DIEPINT / DOEPINT
 constexpr uint32_t kEpXfrc = bit(0);
+constexpr uint32_t kEpEpdisd = bit(1);
+constexpr uint32_t kEpToc = bit(3);           // IN: timeout (control IN)
+constexpr uint32_t kEpInepne = bit(6);        // IN: NAK in effect
 constexpr uint32_t kEpStup = bit(3);          // OUT: setup phase done
 constexpr uint32_t kEpTxfe = bit(7);          // IN: TX FIFO empty
 // DIEPTSIZ / DOEPTSIZ
