@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "tetrapulse/fw/usb_control.hpp"
@@ -94,6 +95,47 @@ RC_GTEST_PROP(UsbEndpointZero, OutDataStageArrivesWhole, ()) {
   RC_ASSERT(!r.stalled);
   RC_ASSERT(d.loopback.taken == data);
   RC_ASSERT(d.loopback.completed == std::vector<uint8_t>{kTake});
+}
+
+// A driver that reads its receive FIFO itself (STM32 OTG FS) puts each OUT packet where
+// out_target() says and reports its size: the data stage arrives as through on_out_packet.
+RC_GTEST_PROP(UsbEndpointZero, OutPacketsPlacedByTheDriverArriveWhole, ()) {
+  LoopbackDevice d;
+  UsbEndpointZero ep0(d.control);
+  const auto data = *rc::gen::container<std::vector<uint8_t>>(*rc::gen::inRange<size_t>(1, 1025), rc::gen::arbitrary<uint8_t>());
+  uint8_t setup[kUsbSetupSize];
+  encode_usb_setup(vendor_out(kTake, 0, static_cast<uint16_t>(data.size())), setup);
+  Action action = ep0.on_setup(setup);
+  size_t sent = 0;
+  while (action == Action::kReceivePacket) {
+    const size_t packet = std::min<size_t>(64, data.size() - sent);
+    size_t room = 0;
+    uint8_t* into = ep0.out_target(&room);
+    RC_ASSERT(room == packet);  // never more than the rest of wLength, never over 64
+    std::copy(data.begin() + static_cast<std::ptrdiff_t>(sent), data.begin() + static_cast<std::ptrdiff_t>(sent + packet), into);
+    sent += packet;
+    action = ep0.on_out_received(packet);
+  }
+  RC_ASSERT(action == Action::kSendStatus);
+  RC_ASSERT(sent == data.size());
+  RC_ASSERT(ep0.on_in_complete() == Action::kNone);
+  RC_ASSERT(d.loopback.taken == data);
+  RC_ASSERT(d.loopback.completed == std::vector<uint8_t>{kTake});
+}
+
+TEST(UsbEndpointZero, PlacedPacketLongerThanItsRoomStalls) {
+  LoopbackDevice d;
+  UsbEndpointZero ep0(d.control);
+  uint8_t setup[kUsbSetupSize];
+  encode_usb_setup(vendor_out(kTake, 0, 10), setup);
+  ASSERT_EQ(ep0.on_setup(setup), Action::kReceivePacket);
+  size_t room = 0;
+  ep0.out_target(&room);
+  ASSERT_EQ(room, 10u);
+  EXPECT_EQ(ep0.on_out_received(11), Action::kStall);  // the driver dropped it, reports its size
+  EXPECT_TRUE(d.loopback.taken.empty());
+  ep0.out_target(&room);
+  EXPECT_EQ(room, 0u) << "after the stall only a new SETUP is taken";
 }
 
 TEST(UsbEndpointZero, RefusedDataStageStallsTheStatus) {

@@ -4,6 +4,7 @@
 #include "tetrapulse/stm32f405/pinout.hpp"
 #include "tetrapulse/stm32f405/registers/otg_fs.hpp"
 #include "tetrapulse/stm32f405/registers/rcc.hpp"
+#include "tetrapulse/stm32f405/usb_fifo_plan.hpp"
 
 namespace tetrapulse::stm32f405 {
 namespace {
@@ -12,14 +13,8 @@ namespace tp = protocol;
 using Action = fw::UsbEndpointZero::Action;
 
 constexpr uint32_t kReadyPolls = 200'000;  // AHB idle and resets take a few AHB/PHY clocks
-constexpr uint32_t kRxWords = 128;         // SETUPs, and several 64-byte OUT packets
-constexpr uint32_t kTx0Words = 32;
-constexpr uint32_t kTx1Words = 128;        // one whole bulk transfer (322 bytes = 81 words)
-static_assert(kRxWords + kTx0Words + kTx1Words <= otg::kFifoWords);
-constexpr unsigned kBulkEp = 1;            // EP1 OUT (0x01) and EP1 IN (0x81), usb_device.hpp
 constexpr uint32_t kPacket = tp::kUsbMaxPacketSize;
 constexpr uint32_t kAllTxFifos = 0x10;
-constexpr unsigned kEndpoints = 4;
 
 bool wait_bits(Reg& reg, uint32_t bits, uint32_t value) {
   for (uint32_t i = 0; i < kReadyPolls; ++i) {
@@ -41,12 +36,7 @@ void flush_rx() {
 // Pops `count` bytes of the packet at the head of the receive FIFO into `out` (up to
 // `capacity`; the rest is dropped). Every access takes a whole word.
 void read_fifo(uint8_t* out, size_t capacity, size_t count) {
-  for (size_t i = 0; i < count; i += 4) {
-    const uint32_t word = otg::FIFO(0);
-    for (size_t k = 0; k < 4 && i + k < count; ++k) {
-      if (i + k < capacity) out[i + k] = static_cast<uint8_t>(word >> (8 * k));
-    }
-  }
+  for (size_t i = 0; i < words_for(count); ++i) store_fifo_word(otg::FIFO(0), i, count, out, capacity);
 }
 
 // Disables an enabled bulk endpoint (RM0090 §34.17.6 "IN/OUT endpoint disable"), bounded.
@@ -85,6 +75,10 @@ bool UsbOtgFs::start(fw::UsbEndpointZero& ep0, fw::UsbControl& control, fw::UsbM
   control_ = &control;
   bulk_ = bulk;
   clock_ = &clock;
+  // The hardware endpoints are the ones the configuration descriptor names.
+  const tp::Result<BulkEndpoints> endpoints = bulk_endpoints(control.params());
+  if (!endpoints) return false;
+  bulk_ep_ = *endpoints;
   configure_alternate(pin_of(Signal::kUsbDm));
   configure_alternate(pin_of(Signal::kUsbDp));
   rcc::Registers& r = rcc::regs();
@@ -110,16 +104,16 @@ bool UsbOtgFs::start(fw::UsbEndpointZero& ep0, fw::UsbControl& control, fw::UsbM
   otg::DCTL() = otg::kDctlSdis;
   otg::DCFG() = field(otg::kDspdFullSpeed, otg::kDcfgDspd);
 
-  otg::GRXFSIZ() = kRxWords;
-  otg::DIEPTXF0() = field(kTx0Words, 16) | kRxWords;
-  otg::DIEPTXF(kBulkEp) = field(kTx1Words, 16) | (kRxWords + kTx0Words);
+  otg::GRXFSIZ() = kFifoPlan.rx_words;
+  otg::DIEPTXF0() = field(kFifoPlan.tx0_words, 16) | kFifoPlan.tx0_start;
+  otg::DIEPTXF(bulk_ep_.in) = field(kFifoPlan.bulk_in_words, 16) | kFifoPlan.bulk_in_start;
   flush_tx(kAllTxFifos);
   flush_rx();
 
   otg::DIEPMSK() = otg::kEpXfrc | otg::kEpToc;
   otg::DOEPMSK() = otg::kEpXfrc | otg::kEpStup;
   otg::DAINTMSK() = 0;
-  for (unsigned ep = 0; ep < kEndpoints; ++ep) {
+  for (unsigned ep = 0; ep < kOtgEndpoints; ++ep) {
     otg::DIEPINT(ep) = 0xFF;
     otg::DOEPINT(ep) = 0xFF;
   }
@@ -163,7 +157,7 @@ void UsbOtgFs::poll() {
   }
   // Packets first, then the endpoint events they complete; IN before OUT, so that the
   // status stage of a transfer is done before the SETUP of the next one is handled.
-  for (unsigned i = 0; i < 2 * kRxWords && (otg::GINTSTS() & otg::kGintRxflvl) != 0; ++i) on_receive_fifo();
+  for (unsigned i = 0; i < 2u * kFifoPlan.rx_words && (otg::GINTSTS() & otg::kGintRxflvl) != 0; ++i) on_receive_fifo();
   on_in_endpoints();
   on_out_endpoints();
 }
@@ -173,7 +167,7 @@ void UsbOtgFs::on_bus_reset() {
   otg::DCTL() = otg::DCTL() & ~otg::kDctlRwusig;
   do_set_configured(false);
   flush_tx(kAllTxFifos);
-  for (unsigned ep = 0; ep < kEndpoints; ++ep) {
+  for (unsigned ep = 0; ep < kOtgEndpoints; ++ep) {
     otg::DIEPINT(ep) = 0xFF;
     otg::DOEPINT(ep) = 0xFF;
   }
@@ -211,7 +205,7 @@ void UsbOtgFs::on_receive_fifo() {
         uint8_t packet[kPacket];
         read_fifo(packet, sizeof(packet), count);
         const size_t n = count < sizeof(packet) ? count : sizeof(packet);
-        if (ep == kBulkEp && configured_ && bulk_ != nullptr) bulk_->on_bulk_packet(tp::ByteView{packet, n});
+        if (ep == bulk_ep_.out && configured_) bulk_->on_bulk_packet(tp::ByteView{packet, n});
       }
       break;
     default:
@@ -226,13 +220,13 @@ void UsbOtgFs::on_in_endpoints() {
     otg::DIEPINT(0) = events;
     if ((events & otg::kEpXfrc) != 0) act(ep0_->on_in_complete());
   }
-  if ((pending & otg::daint_in(kBulkEp)) != 0) {
-    const uint32_t events = otg::DIEPINT(kBulkEp);
-    otg::DIEPINT(kBulkEp) = events;
+  if ((pending & otg::daint_in(bulk_ep_.in)) != 0) {
+    const uint32_t events = otg::DIEPINT(bulk_ep_.in);
+    otg::DIEPINT(bulk_ep_.in) = events;
     if ((events & otg::kEpXfrc) != 0) {
       if (zlp_pending_) {
         zlp_pending_ = false;
-        load_in(kBulkEp, tp::ByteView{});  // the transfer ended on a packet boundary
+        load_in(bulk_ep_.in, tp::ByteView{});  // the transfer ended on a packet boundary
       } else {
         bulk_in_busy_ = false;
       }
@@ -251,9 +245,9 @@ void UsbOtgFs::on_out_endpoints() {
     }
     if ((events & otg::kEpStup) != 0) act(ep0_->on_setup(setup_));
   }
-  if ((pending & otg::daint_out(kBulkEp)) != 0) {
-    const uint32_t events = otg::DOEPINT(kBulkEp);
-    otg::DOEPINT(kBulkEp) = events;
+  if ((pending & otg::daint_out(bulk_ep_.out)) != 0) {
+    const uint32_t events = otg::DOEPINT(bulk_ep_.out);
+    otg::DOEPINT(bulk_ep_.out) = events;
     if ((events & otg::kEpXfrc) != 0 && configured_) arm_bulk_out();
   }
 }
@@ -290,19 +284,15 @@ void UsbOtgFs::arm_ep0_out(bool enable) {
 }
 
 void UsbOtgFs::arm_bulk_out() {
-  otg::DOEPTSIZ(kBulkEp) = field(1, otg::kTsizPktcnt) | field(kPacket, otg::kTsizXfrsiz);
-  otg::DOEPCTL(kBulkEp) = otg::DOEPCTL(kBulkEp) | otg::kEpEpena | otg::kEpCnak;
+  otg::DOEPTSIZ(bulk_ep_.out) = field(1, otg::kTsizPktcnt) | field(kPacket, otg::kTsizXfrsiz);
+  otg::DOEPCTL(bulk_ep_.out) = otg::DOEPCTL(bulk_ep_.out) | otg::kEpEpena | otg::kEpCnak;
 }
 
 void UsbOtgFs::load_in(unsigned ep, tp::ByteView data) {
-  const uint32_t packets = data.size == 0 ? 1 : static_cast<uint32_t>((data.size + kPacket - 1) / kPacket);
-  otg::DIEPTSIZ(ep) = field(packets, otg::kTsizPktcnt) | field(static_cast<uint32_t>(data.size), otg::kTsizXfrsiz);
+  const InTransfer t = in_transfer(data.size);
+  otg::DIEPTSIZ(ep) = field(t.packets, otg::kTsizPktcnt) | field(static_cast<uint32_t>(data.size), otg::kTsizXfrsiz);
   otg::DIEPCTL(ep) = otg::DIEPCTL(ep) | otg::kEpEpena | otg::kEpCnak;
-  for (size_t i = 0; i < data.size; i += 4) {
-    uint32_t word = 0;
-    for (size_t k = 0; k < 4 && i + k < data.size; ++k) word |= static_cast<uint32_t>(data[i + k]) << (8 * k);
-    otg::FIFO(ep) = word;
-  }
+  for (size_t i = 0; i < t.words; ++i) otg::FIFO(ep) = fifo_word(data, i);
 }
 
 void UsbOtgFs::do_set_address(uint8_t address) {
@@ -310,25 +300,27 @@ void UsbOtgFs::do_set_address(uint8_t address) {
 }
 
 void UsbOtgFs::do_set_configured(bool configured) {
-  otg::DAINTMSK() = otg::DAINTMSK() & ~(otg::daint_in(kBulkEp) | otg::daint_out(kBulkEp));
-  disable_in(kBulkEp);
-  disable_out(kBulkEp);
+  const uint32_t bulk_events = otg::daint_in(bulk_ep_.in) | otg::daint_out(bulk_ep_.out);
   configured_ = false;
   bulk_in_busy_ = zlp_pending_ = false;
+  if (bulk_ == nullptr) return;  // the bootloader's configuration has no bulk endpoints
+  otg::DAINTMSK() = otg::DAINTMSK() & ~bulk_events;
+  disable_in(bulk_ep_.in);
+  disable_out(bulk_ep_.out);
   if (!configured) return;
   const uint32_t bulk = field(kPacket, otg::kEpMpsiz) | field(otg::kEpTypeBulk, otg::kEpType) | otg::kEpUsbaep |
                         otg::kEpSd0pid;
-  otg::DIEPCTL(kBulkEp) = bulk | field(kBulkEp, otg::kEpTxfnum) | otg::kEpSnak;
-  otg::DOEPCTL(kBulkEp) = bulk;
-  otg::DAINTMSK() = otg::DAINTMSK() | otg::daint_in(kBulkEp) | otg::daint_out(kBulkEp);
+  otg::DIEPCTL(bulk_ep_.in) = bulk | field(bulk_ep_.in, otg::kEpTxfnum) | otg::kEpSnak;
+  otg::DOEPCTL(bulk_ep_.out) = bulk;
+  otg::DAINTMSK() = otg::DAINTMSK() | bulk_events;
   configured_ = true;
   arm_bulk_out();
 }
 
 void UsbOtgFs::do_set_endpoint_halt(uint8_t endpoint, bool halted) {
-  if ((endpoint & 0x7Fu) != kBulkEp || !configured_) return;
-  const bool in = (endpoint & 0x80u) != 0;
-  Reg& control = in ? otg::DIEPCTL(kBulkEp) : otg::DOEPCTL(kBulkEp);
+  const bool in = endpoint == (0x80u | bulk_ep_.in);
+  if ((!in && endpoint != bulk_ep_.out) || !configured_) return;
+  Reg& control = in ? otg::DIEPCTL(bulk_ep_.in) : otg::DOEPCTL(bulk_ep_.out);
   if (halted) {
     control = control | otg::kEpStall;
     return;
@@ -340,12 +332,11 @@ void UsbOtgFs::do_set_endpoint_halt(uint8_t endpoint, bool halted) {
 
 tp::Status UsbOtgFs::do_send_bulk(tp::ByteView transfer) {
   if (!running_ || !configured_ || bulk_in_busy()) return tp::Error::kBusy;
-  if (transfer.size == 0 || transfer.size > kTx1Words * 4) return tp::Error::kBadLength;
-  const uint32_t words = static_cast<uint32_t>((transfer.size + 3) / 4);
-  if ((otg::DTXFSTS(kBulkEp) & 0xFFFFu) < words) return tp::Error::kBusy;
+  if (transfer.size == 0 || transfer.size > tp::kUsbBulkMaxTransfer) return tp::Error::kBadLength;
+  if ((otg::DTXFSTS(bulk_ep_.in) & 0xFFFFu) < in_transfer(transfer.size).words) return tp::Error::kBusy;
   bulk_in_busy_ = true;
-  zlp_pending_ = transfer.size % kPacket == 0;
-  load_in(kBulkEp, transfer);
+  zlp_pending_ = tp::usb_bulk_needs_zlp(transfer.size);
+  load_in(bulk_ep_.in, transfer);
   return {};
 }
 

@@ -6,16 +6,17 @@
 //
 //   fw::UsbDeviceController   SET_ADDRESS (DCFG.DAD, applied by the core after the status
 //                             stage), SET_CONFIGURATION (opens EP1 bulk IN/OUT), halts
-//   fw::UsbPipe               one bulk IN transfer written whole into EP1's TX FIFO (up to
-//                             322 bytes fit its 128 words), and a ZLP after it when its
-//                             size is a multiple of 64; kBusy until the host took it
+//   fw::UsbPipe               one bulk IN transfer written whole into the bulk IN TX FIFO
+//                             (up to 322 bytes fit its 128 words), and a ZLP after it when
+//                             its size is a multiple of 64; kBusy until the host took it
+// The bulk endpoints are the ones the descriptors name (UsbControl::params(): EP1 OUT
+// 0x01, EP1 IN 0x81 by default).
 //
 // Polled from the main loop (poll()), no interrupt: every message the USB carries is then
 // handled in the same context as the rest of the firmware. The core reports through
 // GINTSTS whether or not its interrupt line is enabled.
 //
-// FIFO RAM (320 words): RX 128 words at 0, EP0 TX 32 words at 128, EP1 TX 128 words at
-// 160. Pins PA11/PA12 (pinout.hpp), VBUS sensing off (the board is bus powered and sees
+// FIFO RAM and packet arithmetic: usb_fifo_plan.hpp (host-tested). Pins PA11/PA12 (pinout.hpp), VBUS sensing off (the board is bus powered and sees
 // the bus whenever it runs). QEMU does not model the OTG core: this driver is compiled,
 // never run, in this project's tests; the logic above it is host-tested in firmware/core.
 #include <cstddef>
@@ -27,6 +28,7 @@
 #include "tetrapulse/fw/usb_endpoint_zero.hpp"
 #include "tetrapulse/fw/usb_link.hpp"
 #include "tetrapulse/fw/usb_message_function.hpp"
+#include "tetrapulse/stm32f405/usb_fifo_plan.hpp"
 
 namespace tetrapulse::stm32f405 {
 
@@ -38,8 +40,9 @@ class UsbOtgFs final : public fw::UsbDeviceController, public fw::UsbPipe {
   UsbOtgFs();
   // Starts the core in device mode and connects to the bus (D+ pull-up). The 48 MHz USB
   // clock must run (Clocks::usb_clock_ok). `bulk`: where bulk OUT packets go (null in the
-  // bootloader, which has no bulk endpoints). False when the core does not come out of
-  // reset or device mode; then nothing is connected.
+  // bootloader, which has no bulk endpoints). False when the descriptors' bulk addresses
+  // name no endpoint of this core, or the core does not come out of reset or device mode;
+  // then nothing is connected.
   bool start(fw::UsbEndpointZero& ep0, fw::UsbControl& control, fw::UsbMessageFunction* bulk,
              const fw::LocalClock& clock);
   bool running() const { return running_; }
@@ -73,6 +76,7 @@ class UsbOtgFs final : public fw::UsbDeviceController, public fw::UsbPipe {
   fw::UsbControl* control_ = nullptr;
   fw::UsbMessageFunction* bulk_ = nullptr;
   const fw::LocalClock* clock_ = nullptr;
+  BulkEndpoints bulk_ep_;
   bool running_ = false;
   bool configured_ = false;
   bool suspended_ = false;

@@ -1,10 +1,7 @@
 #pragma once
 // USB on-the-go full-speed core in device mode (RM0090 §34.16), at 0x50000000.
 // Offsets rather than one struct: the block spans 0x20000 bytes with sparse registers.
-// The core has 1.25 KB (320 words) of FIFO RAM of its own, shared by the receive FIFO and
-// one transmit FIFO per IN endpoint; every FIFO access is one 32-bit word.
-#include <cstddef>
-
+// Every FIFO access is one 32-bit word; the FIFO RAM plan is in usb_fifo_plan.hpp.
 #include "tetrapulse/stm32f405/registers/mmio.hpp"
 
 namespace tetrapulse::stm32f405::otg {
@@ -42,8 +39,6 @@ inline Reg& DOEPINT(unsigned ep) { return at(0xB08 + 0x20 * ep); }
 inline Reg& DOEPTSIZ(unsigned ep) { return at(0xB10 + 0x20 * ep); }
 inline Reg& PCGCCTL() { return at(0xE00); }
 inline Reg& FIFO(unsigned ep) { return at(0x1000 * (ep + 1)); }
-
-constexpr size_t kFifoWords = 320;
 
 // GAHBCFG
 constexpr uint32_t kGahbGint = bit(0);        // interrupt line to the NVIC (this board polls)
