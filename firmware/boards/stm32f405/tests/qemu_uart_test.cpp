@@ -11,6 +11,7 @@
 
 #include "qemu_board.hpp"
 #include "tetrapulse/protocol/timebase.hpp"
+#include "tetrapulse/protocol/uart_frame.hpp"
 #include "tetrapulse/protocol/version.hpp"
 
 namespace tetrapulse::stm32f405::testing {
@@ -70,6 +71,11 @@ TEST_F(QemuUart, ReportsTheBoardItRunsOn) {
   // Started through the real bootloader, which reports its version in the handoff.
   EXPECT_EQ(info->bootloader_version, TETRAPULSE_FW_VERSION);
   EXPECT_NE(info->capabilities & tp::capability::kUart, 0u);
+  EXPECT_NE(info->capabilities & tp::capability::kGpioSyncInput, 0u);
+  // QEMU models neither the OTG core nor bxCAN (their registers read zero): the board must
+  // find that out at start and not offer USB, DFU or CAN.
+  EXPECT_EQ(info->capabilities & (tp::capability::kUsb | tp::capability::kDfu), 0u);
+  EXPECT_EQ(info->capabilities & (tp::capability::kCan | tp::capability::kCanUpdate), 0u);
   EXPECT_EQ(board_->framing_errors(), 0u);
 }
 
@@ -105,6 +111,10 @@ TEST_F(QemuUart, TakesTimeSyncSilentlyAndReportsStatus) {
   EXPECT_EQ(s0->sync_state, tp::SyncState::kFreeRunning);
   EXPECT_EQ(s0->rx_malformed, 0u);
   EXPECT_EQ(s0->update_state, tp::UpdateState::kIdle);
+  // Over UART a Sync/FollowUp pair only gives coarse rig time (for numbering GPIO edges);
+  // it is no sample for the clock servo, accepted or refused.
+  EXPECT_EQ(s0->sync_accepted, 0u);
+  EXPECT_EQ(s0->sync_rejected, 0u);
 
   // The local clock is TIM2: board uptime advances with the emulator's virtual time,
   // which follows the host's clock; a wide band still tells a wrong tick rate (x12 for
@@ -120,6 +130,26 @@ TEST_F(QemuUart, TakesTimeSyncSilentlyAndReportsStatus) {
   const double host_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   EXPECT_GT(board_ms, 0.5 * host_ms);
   EXPECT_LT(board_ms, 1.5 * host_ms + 50);
+
+  // A broken Sync (its message one byte short, in a good frame) is counted and never
+  // answered (SPEC §3: only requests get an ErrorResponse).
+  uint8_t encoded[tp::kMaxMessageSize];
+  tp::ByteWriter w(encoded, sizeof(encoded));
+  ASSERT_TRUE(tp::encode(message(0, tp::Sync{8}), w).ok());
+  std::vector<uint8_t> frame(tp::kUartMaxFrameSize);
+  const tp::Result<size_t> n = tp::encode_uart_frame(tp::ByteView{encoded, w.size() - 1}, frame.data(), frame.size());
+  ASSERT_TRUE(n.ok());
+  frame.resize(*n);
+  ASSERT_TRUE(board_->send_bytes(frame));
+  const std::optional<tp::Message> unexpected = board_->receive(300);
+  EXPECT_FALSE(unexpected.has_value()) << "answered a broken Sync with type "
+                                       << int(static_cast<uint8_t>(unexpected->type()));
+  const auto later = board_->request(message(6, tp::GetStatus{}));
+  ASSERT_TRUE(later.has_value());
+  const tp::StatusReport* s2 = later->get<tp::StatusReport>();
+  ASSERT_NE(s2, nullptr);
+  EXPECT_EQ(s2->rx_malformed, s1->rx_malformed + 1);
+  EXPECT_EQ(s2->sync_accepted, 0u);
 }
 
 TEST_F(QemuUart, SchedulesLedEdgesOnTheCodesBitEdges) {
