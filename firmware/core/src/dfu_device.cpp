@@ -66,12 +66,8 @@ UsbControlReply DfuDevice::do_setup(const UsbSetup& setup, uint8_t* scratch, siz
   if (state_ == DfuState::kDfuDownloadBusy || state_ == DfuState::kDfuManifest) return refuse();
   switch (static_cast<DfuRequest>(setup.request)) {
     case DfuRequest::kGetStatus:
-      if (!in) break;
-      return get_status(scratch, capacity);
     case DfuRequest::kGetState:
-      if (!in || setup.length < 1 || capacity < 1) break;
-      scratch[0] = static_cast<uint8_t>(state_);
-      return UsbControlReply::send(scratch, 1);
+      return state_request(setup, scratch, capacity);
     case DfuRequest::kDownload:
       if (in) break;
       return download(setup);
@@ -96,16 +92,21 @@ UsbControlReply DfuDevice::do_setup(const UsbSetup& setup, uint8_t* scratch, siz
   return refuse();
 }
 
+// GETSTATUS and GETSTATE, alike in both modes.
+UsbControlReply DfuDevice::state_request(const UsbSetup& setup, uint8_t* scratch, size_t capacity) {
+  if (!setup.device_to_host()) return refuse();
+  if (static_cast<DfuRequest>(setup.request) == DfuRequest::kGetStatus) return get_status(scratch, capacity);
+  if (setup.length < 1 || capacity < 1) return refuse();
+  scratch[0] = static_cast<uint8_t>(state_);
+  return UsbControlReply::send(scratch, 1);
+}
+
 UsbControlReply DfuDevice::runtime_request(const UsbSetup& setup, uint8_t* scratch, size_t capacity) {
   const bool in = setup.device_to_host();
   switch (static_cast<DfuRequest>(setup.request)) {
     case DfuRequest::kGetStatus:
-      if (!in) break;
-      return get_status(scratch, capacity);
     case DfuRequest::kGetState:
-      if (!in || setup.length < 1 || capacity < 1) break;
-      scratch[0] = static_cast<uint8_t>(state_);
-      return UsbControlReply::send(scratch, 1);
+      return state_request(setup, scratch, capacity);  // refused: a stall (no target here)
     case DfuRequest::kDetach:
       if (in || setup.length != 0) break;
       state_ = DfuState::kAppDetach;

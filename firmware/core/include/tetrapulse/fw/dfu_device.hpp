@@ -63,6 +63,7 @@ class DfuDevice final : public UsbFunction {
   void do_bus_reset() override;
 
   UsbControlReply runtime_request(const UsbSetup& setup, uint8_t* scratch, size_t capacity);
+  UsbControlReply state_request(const UsbSetup& setup, uint8_t* scratch, size_t capacity);
   UsbControlReply get_status(uint8_t* scratch, size_t capacity);
   UsbControlReply download(const UsbSetup& setup);
   UsbControlReply upload(const UsbSetup& setup, uint8_t* scratch, size_t capacity);
