@@ -7,12 +7,26 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 
 namespace tetrapulse::stm32f405::testing {
 
 namespace tp = protocol;
 
-QemuBoard::QemuBoard(const std::string& bootloader_elf, const std::string& slot0_image) {
+std::string artefact(const char* variable) {
+  const char* path = std::getenv(variable);
+  return path == nullptr ? std::string() : std::string(path);
+}
+
+tp::Message request_message(uint8_t seq, tp::Body body) {
+  tp::Message m;
+  m.seq = seq;
+  m.body = body;
+  return m;
+}
+
+QemuBoard::QemuBoard(const std::string& bootloader_elf, const std::string& slot0_image,
+                     const std::string& slot1_image, VirtualClock clock) {
   int in[2];
   int out[2];
   if (pipe(in) != 0) return;
@@ -21,16 +35,29 @@ QemuBoard::QemuBoard(const std::string& bootloader_elf, const std::string& slot0
     close(in[1]);
     return;
   }
-  const std::string loader = "loader,file=" + slot0_image + ",addr=0x08020000";
+  std::vector<std::string> args = {"qemu-system-arm", "-M", "netduinoplus2", "-display", "none", "-monitor", "none",
+                                   "-serial", "stdio", "-kernel", bootloader_elf};
+  if (clock == VirtualClock::kInstructions) {
+    args.push_back("-icount");
+    args.push_back("shift=auto");
+  }
+  const std::string slots[2] = {slot0_image, slot1_image};
+  const char* const addresses[2] = {"0x08020000", "0x08040000"};
+  for (size_t i = 0; i < 2; ++i) {
+    if (slots[i].empty()) continue;
+    args.push_back("-device");
+    args.push_back("loader,file=" + slots[i] + ",addr=" + addresses[i]);
+  }
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   pid_ = fork();
   if (pid_ == 0) {
     dup2(in[0], STDIN_FILENO);
     dup2(out[1], STDOUT_FILENO);
     close(in[1]);
     close(out[0]);
-    execlp("qemu-system-arm", "qemu-system-arm", "-M", "netduinoplus2", "-display", "none", "-monitor", "none",
-           "-serial", "stdio", "-kernel", bootloader_elf.c_str(), "-device", loader.c_str(),
-           static_cast<char*>(nullptr));
+    execvp(argv[0], argv.data());
     _exit(127);
   }
   close(in[0]);

@@ -1,8 +1,16 @@
 #pragma once
 // The real application binary on an emulated STM32F405 (QEMU's netduinoplus2), driven
 // over USART1 with the protocol's UART framing (SPEC.md §6). QEMU boots the real
-// bootloader ELF; the slot 0 image (header and payload, the bytes a board gets) is
-// loaded at 0x08020000; the bootloader checks it and starts it.
+// bootloader ELF; slot images (header and payload, the bytes a board gets) are loaded at
+// their slots, 0x08020000 and 0x08040000; the bootloader checks them and starts one.
+//
+// The emulator's virtual time (the board's timers) either follows the host's clock, or
+// counts instructions (-icount shift=auto). With the host's clock, a host busy with other
+// tests stops the board while its timers run on, and the code player skips the LED edges
+// it is then too late for (as a board that missed its deadlines should). Counting
+// instructions, the board only runs slower; its time is steered towards the host's, but
+// measured up to 4 times off over a second under load.
+enum class VirtualClock { kHost, kInstructions };
 #include <sys/types.h>
 
 #include <cstdint>
@@ -15,9 +23,17 @@
 
 namespace tetrapulse::stm32f405::testing {
 
+// The path in environment variable `variable` (set by CTest), or "" when it is not set.
+std::string artefact(const char* variable);
+
+// A request with sequence number `seq`.
+protocol::Message request_message(uint8_t seq, protocol::Body body);
+
 class QemuBoard {
  public:
-  QemuBoard(const std::string& bootloader_elf, const std::string& slot0_image);
+  // An empty path leaves that slot erased.
+  QemuBoard(const std::string& bootloader_elf, const std::string& slot0_image, const std::string& slot1_image = "",
+            VirtualClock clock = VirtualClock::kInstructions);
   ~QemuBoard();
   QemuBoard(const QemuBoard&) = delete;
   QemuBoard& operator=(const QemuBoard&) = delete;
