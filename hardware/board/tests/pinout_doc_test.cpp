@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -33,6 +34,21 @@ std::string replaced_once(std::string text, const std::string& from, const std::
   return text;
 }
 
+// An input a reader must refuse, and a phrase its error must contain.
+struct Refused {
+  std::string text;
+  std::string says;
+};
+
+template <class Reader>
+void expect_refused(Reader read, const std::vector<Refused>& cases) {
+  for (const Refused& c : cases) {
+    const auto t = read(c.text);
+    ASSERT_FALSE(t.has_value()) << c.text;
+    EXPECT_NE(t.error().find(c.says), std::string::npos) << t.error() << "\nexpected: " << c.says;
+  }
+}
+
 class PinoutDoc : public ::testing::Test {
  protected:
   std::string header = slurp(TETRAPULSE_PINOUT_HEADER);
@@ -45,6 +61,13 @@ class PinoutDoc : public ::testing::Test {
     EXPECT_TRUE(d.has_value()) << TETRAPULSE_PINOUT_DOC << ": " << (d ? "" : d.error());
     if (!f || !d) return {"unreadable"};
     return pin_table_differences(*f, *d);
+  }
+
+  // The one disagreement between the two texts; fails the test when there is not exactly one.
+  std::string only_difference(const std::string& header_text, const std::string& doc_text) {
+    const auto diff = differences(header_text, doc_text);
+    EXPECT_EQ(diff.size(), 1u) << joined(diff);
+    return diff.size() == 1 ? diff[0] : joined(diff);
   }
 };
 
@@ -91,16 +114,12 @@ TEST_F(PinoutDoc, AnyChangedDocumentedFieldIsReported) {
 
 TEST_F(PinoutDoc, MovedPinInTheDocIsReported) {
   const std::string moved = replaced_once(doc, "| `kLed1` | PC7 |", "| `kLed1` | PC10 |");
-  const auto diff = differences(header, moved);
-  ASSERT_EQ(diff.size(), 1u) << joined(diff);
-  EXPECT_EQ(diff[0], "kLed1: pin PC7 in firmware, PC10 documented");
+  EXPECT_EQ(only_difference(header, moved), "kLed1: pin PC7 in firmware, PC10 documented");
 }
 
 TEST_F(PinoutDoc, ChangedAlternateFunctionInFirmwareIsReported) {
   const std::string changed = replaced_once(header, "{gpio::Port::kA, 1, 1}", "{gpio::Port::kA, 1, 2}");
-  const auto diff = differences(changed, doc);
-  ASSERT_EQ(diff.size(), 1u) << joined(diff);
-  EXPECT_EQ(diff[0], "kSyncInput: AF2 in firmware, AF1 documented");
+  EXPECT_EQ(only_difference(changed, doc), "kSyncInput: AF2 in firmware, AF1 documented");
 }
 
 TEST_F(PinoutDoc, RowMissingFromTheDocIsReported) {
@@ -108,9 +127,7 @@ TEST_F(PinoutDoc, RowMissingFromTheDocIsReported) {
   ASSERT_NE(at, std::string::npos);
   std::string missing = doc;
   missing.erase(at, doc.find('\n', at) - at + 1);
-  const auto diff = differences(header, missing);
-  ASSERT_EQ(diff.size(), 1u) << joined(diff);
-  EXPECT_EQ(diff[0], "kCanTx: on PB9 in firmware, not documented");
+  EXPECT_EQ(only_difference(header, missing), "kCanTx: on PB9 in firmware, not documented");
 }
 
 TEST_F(PinoutDoc, SignalAddedToFirmwareButNotDocumentedIsReported) {
@@ -119,25 +136,18 @@ TEST_F(PinoutDoc, SignalAddedToFirmwareButNotDocumentedIsReported) {
                         "constexpr PinAssignment kMore[] = {\n"
                         "    {Signal::kStatusLed, {gpio::Port::kB, 0, 0}, \"PB0\", \"GPIO, status LED\"},\n};\n"
                         "constexpr Pin pin_of");
-  const auto diff = differences(added, doc);
-  ASSERT_EQ(diff.size(), 1u) << joined(diff);
-  EXPECT_EQ(diff[0], "kStatusLed: on PB0 in firmware, not documented");
+  EXPECT_EQ(only_difference(added, doc), "kStatusLed: on PB0 in firmware, not documented");
 }
 
 TEST_F(PinoutDoc, DifferentCrystalIsReported) {
   const std::string changed = replaced_once(header, "kHseHz = 8'000'000", "kHseHz = 12'000'000");
-  const auto diff = differences(changed, doc);
-  ASSERT_EQ(diff.size(), 1u) << joined(diff);
-  EXPECT_EQ(diff[0], "HSE: 12000000 Hz in firmware, 8000000 Hz documented");
+  EXPECT_EQ(only_difference(changed, doc), "HSE: 12000000 Hz in firmware, 8000000 Hz documented");
 }
 
 TEST(PinTableReader, RefusesMalformedDocumentation) {
   const std::string head = "| signal (firmware) | pin | LQFP64 | AF | function |\n|---|---|---|---|---|\n";
   const std::string hse = "\nHSE crystal 8 MHz (kHseHz)\n";
-  const struct {
-    std::string text;
-    std::string says;
-  } cases[] = {
+  expect_refused(read_documented_pinout, {
       {"no table here\n", "no table whose first column is 'signal (firmware)'"},
       {head + "| kLed0 | PZ6 | 37 | AF3 | TIM8_CH1 |\n" + hse, "pin 'PZ6'"},
       {head + "| kLed0 | PC16 | 37 | AF3 | TIM8_CH1 |\n" + hse, "pin 'PC16'"},
@@ -149,12 +159,7 @@ TEST(PinTableReader, RefusesMalformedDocumentation) {
       {head + "| kLed0 | PC6 | 37 | AF3 | TIM8_CH1 |\n", "no line names kHseHz"},
       {head + "| kLed0 | PC6 | 37 | AF3 | TIM8_CH1 |\n\nkHseHz is fast\n", "gives no frequency in MHz"},
       {head + "\n" + hse, "the signal table has no rows"},
-  };
-  for (const auto& c : cases) {
-    const auto t = read_documented_pinout(c.text);
-    ASSERT_FALSE(t.has_value()) << c.text;
-    EXPECT_NE(t.error().find(c.says), std::string::npos) << t.error() << "\nexpected: " << c.says;
-  }
+  });
 }
 
 TEST(PinTableReader, RefusesInconsistentFirmwareTable) {
@@ -162,10 +167,7 @@ TEST(PinTableReader, RefusesInconsistentFirmwareTable) {
   const std::string hse = "constexpr uint32_t kHseHz = 8'000'000;\n";
   const std::string a0 = "{Signal::kA0, {gpio::Port::kA, 0, 1}, \"PA0\", \"TIM2_CH1, x\"},\n";
   const std::string b1 = "{Signal::kB1, {gpio::Port::kB, 1, 2}, \"PB1\", \"TIM3_CH4, y\"},\n";
-  const struct {
-    std::string text;
-    std::string says;
-  } cases[] = {
+  expect_refused(read_firmware_pinout, {
       {a0 + b1 + hse, "no 'enum class Signal'"},
       {enum_text + a0 + hse, "Signal::kB1 appears 0 times"},
       {enum_text + a0 + a0 + b1 + hse, "Signal::kA0 appears 2 times"},
@@ -177,12 +179,7 @@ TEST(PinTableReader, RefusesInconsistentFirmwareTable) {
       {enum_text + a0 + b1, "no kHseHz"},
       // A row commented out does not count.
       {enum_text + a0 + "// " + b1 + hse, "Signal::kB1 appears 0 times"},
-  };
-  for (const auto& c : cases) {
-    const auto t = read_firmware_pinout(c.text);
-    ASSERT_FALSE(t.has_value()) << c.text;
-    EXPECT_NE(t.error().find(c.says), std::string::npos) << t.error() << "\nexpected: " << c.says;
-  }
+  });
   const auto ok = read_firmware_pinout(enum_text + a0 + b1 + hse);
   ASSERT_TRUE(ok.has_value()) << ok.error();
   EXPECT_EQ(ok->rows[1].function, "TIM3_CH4");
