@@ -72,10 +72,13 @@ Fit fit_template(const CodeWave& wave, const Window& w, double origin, double ra
 // Best origin (and rate) of one code: a grid, then golden-section refinement of the origin.
 Fit best_fit(const CodeWave& wave, const Window& w, const std::vector<double>& rates, double bit_period,
              int phase_steps, const double* known_origin) {
+  const double exposure = *std::min_element(w.exposure.begin(), w.exposure.end());
   if (known_origin != nullptr) return fit_template(wave, w, *known_origin, 1.0);
   Fit best;
-  const double step = bit_period / phase_steps;
-  const int points = static_cast<int>(std::lround(wave.period() / step));
+  // A template changes over an exposure's length at its edges, so a grid finer
+  // than a quarter exposure finds nothing the refinement below does not.
+  const double step = std::max(bit_period / phase_steps, std::min(exposure / 4, wave.period() / 16));
+  const int points = static_cast<int>(std::ceil(wave.period() / step));
   for (double rate : rates) {
     for (int g = 0; g < points; ++g) {
       const Fit f = fit_template(wave, w, g * step, rate);
