@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -160,7 +161,9 @@ TEST(FrequencyIdentifier, IdentifiesEveryCodeFreeRunningWithinTwoLongestPeriods)
   EXPECT_EQ(wrong, 0);
   EXPECT_EQ(undecided, 0);
   EXPECT_LE(worst, limit) << "frames to identify, worst case; two longest periods are " << limit;
-  RecordProperty("worst_frames_to_identify", worst);
+  std::printf("[measure] 100 fps, 8 codes, free-running, 10 %% drops: identified within %d frames (two longest apparent "
+              "periods: %.0f)\n",
+              worst, limit);
 }
 
 // With a time base (synchronized boards, phase known) one template per code is
