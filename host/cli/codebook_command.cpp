@@ -14,6 +14,7 @@
 #include "codebook_constraints.hpp"
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "frequency_codebook_command.hpp"
 #include "tetrapulse/localizer/dataset_io.hpp"
 #include "tetrapulse/localizer/targets.hpp"
 #include "tetrapulse/protocol/codebook.hpp"
@@ -41,6 +42,7 @@ struct GenerateArgs {
   std::vector<int> ids;
   std::string out;
   bool capacity = false;
+  FrequencyCodebookArgs frequency;
 };
 
 std::vector<uint64_t> search_codes(const CodebookSpec& spec, protocol::CodebookWorkspace& ws) {
@@ -126,6 +128,7 @@ int run_generate(const GenerateArgs& a) {
     codebook_error("--low: only meaningful with --modulation two_level");
     return kExitUsage;
   }
+  if (a.frequency.frequency() && a.capacity) return run_frequency_capacity(a.frequency, modulation);
   const CodeTiming timing = a.free_running ? CodeTiming::kFreeRunning : CodeTiming::kSynchronized;
   auto spec = codebook_spec(a.constraints, timing, modulation, std::nullopt);
   if (!spec) {
@@ -178,7 +181,17 @@ int run_generate(const GenerateArgs& a) {
     return kExitUsage;
   }
 
-  const std::vector<uint64_t> codes = search_codes(*spec, *ws);
+  // Frequency codes come from the camera's sampling, not from the search.
+  std::optional<FrequencyChoice> frequency;
+  if (a.frequency.frequency()) {
+    auto chosen = choose_frequency_codebook(a.frequency, modulation, spec->count, per_marker, targets);
+    if (!chosen) {
+      codebook_error(chosen.error().message);
+      return chosen.error().exit;
+    }
+    frequency = std::move(*chosen);
+  }
+  const std::vector<uint64_t> codes = frequency ? frequency->words() : search_codes(*spec, *ws);
   if (codes.size() < spec->count) {
     codebook_error(
         fmt::format("found only {} of the {} codes that {} targets need ({}); {}", codes.size(), spec->count, targets,
@@ -190,7 +203,7 @@ int run_generate(const GenerateArgs& a) {
   TargetsFile out;
   out.timebase.synchronized = timing == CodeTiming::kSynchronized;
   out.timebase.epoch_ns = 0;
-  out.timebase.bit_period_ns = a.bit_period_ns;
+  out.timebase.bit_period_ns = frequency ? frequency->bit_period_ns : a.bit_period_ns;
   out.modulation.kind = modulation;
   out.modulation.low = modulation == ModulationKind::kTwoLevel ? a.low.value_or(0.3) : 0.0;
   for (size_t i = 0; i < targets; ++i) {
@@ -198,8 +211,8 @@ int run_generate(const GenerateArgs& a) {
     t.id = ids[i];
     if (shapes.size() != targets) t.name = fmt::format("{}-{}", t.name.empty() ? "target" : t.name, t.id);
     for (size_t k = 0; k < kMarkers; ++k) {
-      const uint64_t w = codes[per_marker ? kMarkers * i + k : i];
-      t.markers[k].code = Code{w, spec->length};
+      const size_t j = per_marker ? kMarkers * i + k : i;
+      t.markers[k].code = frequency ? frequency->codes[j] : Code{codes[j], spec->length};
     }
     out.targets.push_back(std::move(t));
   }
@@ -210,8 +223,8 @@ int run_generate(const GenerateArgs& a) {
     codebook_error(written.error().what());
     return kExitBadInput;
   }
-  fmt::print("{}: {} targets, {} codes ({}), seed {}\n", a.out, targets, codes.size(), describe_codebook_spec(*spec),
-             a.seed);
+  fmt::print("{}: {} targets, {} codes ({}), seed {}\n", a.out, targets, codes.size(),
+             frequency ? frequency->description : describe_codebook_spec(*spec), a.seed);
   return kExitOk;
 }
 
@@ -246,10 +259,13 @@ void add_codebook_command(CLI::App& app, int* result) {
   cmd->add_option("--out", gen->out, "targets.yaml to write");
   cmd->add_flag("--capacity", gen->capacity, "Only report how many codes the constraints allow (by search)");
 
+  add_frequency_codebook_options(cmd, &gen->frequency);
+
   add_codebook_check_command(cmd, result);
   cmd->require_subcommand(0, 1);
   cmd->callback([result, gen, cmd] {
     if (cmd->got_subcommand("check")) return;
+    if (cmd->count("--bit-period-ns") > 0) gen->frequency.bit_period_ns = gen->bit_period_ns;
     *result = run_generate(*gen);
   });
 }
