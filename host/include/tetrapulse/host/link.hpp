@@ -69,14 +69,18 @@ class Link {
   // receive() (a CAN broadcast answered by every board).
   uint8_t take_seq() { return next_seq_++; }
 
+  // The transport alone, without encoding or decoding: sends the bytes of one message
+  // (3..320 bytes, framed as the transport frames them) and waits at most `timeout_ns`
+  // for the bytes of one message (nullopt when none came). For diagnostics and tests.
+  HostResult<void> send_raw(protocol::ByteView message) { return send_bytes(message); }
+  HostResult<std::optional<RawMessage>> receive_raw(int64_t timeout_ns) { return receive_bytes(timeout_ns); }
+
   const LinkCounters& counters() const { return counters_; }
   // The clock of received_ns and of every timeout.
   virtual int64_t now_ns() const;
 
  protected:
-  // Sends the encoded message (3..320 bytes).
   virtual HostResult<void> send_bytes(protocol::ByteView message) = 0;
-  // Waits at most `timeout_ns` for the bytes of one message; nullopt when none came.
   virtual HostResult<std::optional<RawMessage>> receive_bytes(int64_t timeout_ns) = 0;
 
   LinkCounters counters_;
