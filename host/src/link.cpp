@@ -63,7 +63,7 @@ HostResult<ReceivedMessage> Link::receive(std::chrono::milliseconds timeout) {
   auto next = next_from_transport(now_ns() + timeout_ns);
   if (!next) return tl::unexpected(next.error());
   if (!next->has_value()) {
-    return host_error(HostErrorKind::kTimeout, name_, fmt::format("no message within {} ms", timeout.count()),
+    return host_error(HostErrorKind::kTimeout, name_, fmt::format("no message within {} ms{}", timeout.count(), silence_hint()),
                       protocol::Error::kTimeout);
   }
   return std::move(**next);
@@ -87,7 +87,7 @@ HostResult<ReceivedMessage> Link::request(const protocol::Body& body, std::chron
       return tl::unexpected(e);
     }
     if (!next->has_value()) {
-      return host_error(HostErrorKind::kTimeout, name_, fmt::format("{}: no answer within {} ms", what, timeout.count()),
+      return host_error(HostErrorKind::kTimeout, name_, fmt::format("{}: no answer within {} ms{}", what, timeout.count(), silence_hint()),
                         protocol::Error::kTimeout);
     }
     ReceivedMessage& m = **next;

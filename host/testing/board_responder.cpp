@@ -13,7 +13,9 @@ using protocol::Message;
 using protocol::MessageType;
 
 BoardResponder::BoardResponder(ResponderIdentity identity)
-    : identity_(identity), running_(protocol::default_config()), stored_(protocol::default_config()) {}
+    : identity_(identity), running_(protocol::default_config()), stored_(protocol::default_config()) {
+  running_.node_id = stored_.node_id = identity.node_id;
+}
 
 Message BoardResponder::ack(const Message& request, uint32_t value) const {
   return Message{request.seq, protocol::Ack{request.type(), value}};

@@ -25,6 +25,7 @@ struct ResponderIdentity {
   std::array<uint32_t, 2> slot_base{0, 0};  // load_address an image needs in slot 0 / 1
   uint32_t slot_capacity = 1u << 20;        // bytes an update may write
   uint8_t active_slot = 0;
+  uint8_t node_id = 1;  // CAN node id of the initial configuration
 };
 
 class BoardResponder {

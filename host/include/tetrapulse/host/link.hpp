@@ -82,6 +82,8 @@ class Link {
  protected:
   virtual HostResult<void> send_bytes(protocol::ByteView message) = 0;
   virtual HostResult<std::optional<RawMessage>> receive_bytes(int64_t timeout_ns) = 0;
+  // Appended to "no answer within N ms": what the transport saw that may explain it.
+  virtual std::string silence_hint() const { return {}; }
 
   LinkCounters counters_;
 
