@@ -103,8 +103,10 @@ class LibusbBulkPipe : public UsbBulkPipe {
 
 }  // namespace
 
-HostResult<std::unique_ptr<UsbLink>> UsbLink::open(const std::string& serial, UsbLinkOptions options) {
-  auto board = usb::open_board(serial, protocol::UsbMode::kApplication);
+namespace {
+
+HostResult<std::unique_ptr<UsbLink>> link_to(HostResult<std::unique_ptr<usb::UsbBoardHandle>> board,
+                                            UsbLinkOptions options) {
   if (!board) return tl::unexpected(board.error());
   const std::string name = usb_link_name((*board)->listing().serial);
   if (auto claimed = (*board)->claim((*board)->layout().messages->number, name); !claimed) {
@@ -113,6 +115,17 @@ HostResult<std::unique_ptr<UsbLink>> UsbLink::open(const std::string& serial, Us
   // Reconnect by the serial the board has, even when it was opened as "the only one".
   const std::string board_serial = (*board)->listing().serial;
   return std::make_unique<UsbLink>(name, std::make_unique<LibusbBulkPipe>(name, board_serial, std::move(*board), options));
+}
+
+}  // namespace
+
+HostResult<std::unique_ptr<UsbLink>> UsbLink::open(const std::string& serial, UsbLinkOptions options) {
+  return link_to(usb::open_board(serial, protocol::UsbMode::kApplication), options);
+}
+
+HostResult<std::unique_ptr<UsbLink>> UsbLink::wait_and_open(const std::string& serial, std::chrono::milliseconds timeout,
+                                                            UsbLinkOptions options) {
+  return link_to(usb::wait_for_board(serial, protocol::UsbMode::kApplication, static_cast<int>(timeout.count())), options);
 }
 
 HostResult<void> UsbLink::send_bytes(protocol::ByteView message) {

@@ -41,7 +41,13 @@ class UsbLink : public Link {
  public:
   // The application-mode board with this serial number ("" = the only one).
   static HostResult<std::unique_ptr<UsbLink>> open(const std::string& serial, UsbLinkOptions options = {});
+  // open(), waiting up to `timeout` for the board to appear (after a reset or a flash).
+  static HostResult<std::unique_ptr<UsbLink>> wait_and_open(const std::string& serial, std::chrono::milliseconds timeout,
+                                                            UsbLinkOptions options = {});
   UsbLink(std::string name, std::unique_ptr<UsbBulkPipe> pipe) : Link(std::move(name)), pipe_(std::move(pipe)) {}
+
+  // The board's USB serial number ("" over a fake pipe).
+  std::string serial() const { return name().rfind("usb:", 0) == 0 ? name().substr(4) : std::string(); }
 
   // What the board answered to PROTOCOL_INFO when it was (last) opened.
   std::optional<protocol::UsbProtocolInfo> protocol_info() const { return pipe_->protocol_info(); }
