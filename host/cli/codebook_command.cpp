@@ -272,14 +272,13 @@ int run_generate(const GenerateArgs& a) {
     codebook_error(written.error().what());
     return kExitBadInput;
   }
-  fmt::print("{}: {} targets, {} codes ({}), seed {}\n", a.out, targets, codes.size(), describe_codebook_spec(*spec),
-             a.seed);
   // One board configuration per target, for `tetrapulse config --file`.
   const std::string folder =
       a.board_configs.value_or((std::filesystem::path(a.out).parent_path() / "boards").string());
   const protocol::SyncSource sync = *host::parse_sync_source(a.board_sync.value_or(timing == CodeTiming::kSynchronized ? "can" : "none"));
   if (const int r = write_board_configs(out, folder, sync); r != kExitOk) return r;
-  fmt::print("{}: {} board configurations (sync {})\n", folder, targets, host::sync_source_name(sync));
+  fmt::print("{}: {} targets, {} codes ({}), seed {}; board configurations in {}/ (sync {})\n", a.out, targets,
+             codes.size(), describe_codebook_spec(*spec), a.seed, folder, host::sync_source_name(sync));
   return kExitOk;
 }
 
