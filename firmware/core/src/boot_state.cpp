@@ -63,17 +63,8 @@ BootDecision select_boot(const protocol::Result<BootState>& stored, const std::a
                          bool stay) {
   BootDecision d;
   if (stay) return d;
-  if (!stored) {
-    // Fresh from the factory (or an unreadable state): the newest valid image, as confirmed.
-    const uint8_t slot = newest_valid(slots);
-    if (slot == kNoSlot) return d;
-    d.boot = true;
-    d.slot = slot;
-    d.state.confirmed_slot = slot;
-    d.write_state = true;
-    return d;
-  }
-  BootState s = *stored;
+  // No stored state: fresh from the factory (or unreadable), handled as nothing confirmed.
+  BootState s = stored ? *stored : BootState{};
   if (s.pending_slot != kNoSlot) {
     if (slots[s.pending_slot].valid && s.attempts < kMaxTrialBoots) {
       ++s.attempts;  // counted before the jump: a trial that hangs or resets still counts
@@ -94,8 +85,8 @@ BootDecision select_boot(const protocol::Result<BootState>& stored, const std::a
     d.state = s;
     return d;
   }
-  // The confirmed image is gone (or there never was one): anything that checks is better
-  // than no firmware at all.
+  // The confirmed image is gone, or there never was one: the newest image that checks runs
+  // as confirmed (anything is better than no firmware at all).
   const uint8_t slot = newest_valid(slots);
   d.state = s;
   if (slot == kNoSlot) return d;

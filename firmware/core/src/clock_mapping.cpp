@@ -41,13 +41,14 @@ void ClockMapping::update_rates() {
   ticks_per_ns_ = shl_div(1, kTicksPerNsShift + kNsPerTickShift, ns_per_tick_);
 }
 
-int32_t ClockMapping::rate_ppb() const {
-  // The counter's rate error r satisfies (1 + correction)(1 + r) = 1, so r ~ -correction.
-  const int64_t ppb = -mul_shr_signed(correction_, kNsPerSecond, kCorrectionShift);
-  if (ppb > INT32_MAX) return INT32_MAX;
-  if (ppb < INT32_MIN) return INT32_MIN;
-  return static_cast<int32_t>(ppb);
+int32_t correction_to_ppb(int64_t correction) {
+  // |c| stays far below 2^33 (the servo clamps it to 500 ppm), so c * 1e9 fits.
+  const int64_t c = clamp64(correction, -(int64_t{1} << 38), int64_t{1} << 38);
+  const int64_t ppb = div_round(-c * static_cast<int64_t>(kNsPerSecond), (int64_t{1} << kCorrectionShift) + c);
+  return static_cast<int32_t>(clamp64(ppb, INT32_MIN, INT32_MAX));
 }
+
+int32_t ClockMapping::rate_ppb() const { return correction_to_ppb(correction_); }
 
 int64_t ClockMapping::to_rig(Tick t) const {
   return saturating_add(rig_anchor_, mul_shr_signed(signed_diff(t, tick_anchor_), ns_per_tick_, kNsPerTickShift));

@@ -13,7 +13,7 @@ int64_t abs64(int64_t v) { return v < 0 ? -v : v; }
 // gain/256 * e / tau as a correction (2^-40 units).
 int64_t rate_term(uint16_t gain_256, int64_t e, int64_t tau) {
   const int64_t clamped = clamp64(e, -kMaxErrorForRate, kMaxErrorForRate);
-  return div_round((clamped << kCorrectionShift) / 256 * gain_256, tau);
+  return div_round(clamped * kOne / 256 * gain_256, tau);
 }
 
 int64_t ppm_to_correction(int64_t ppm) { return div_round(ppm * kOne, 1'000'000); }
@@ -203,9 +203,8 @@ protocol::SyncState ClockServo::state(Tick now) const {
 
 int32_t ClockServo::rate_ppb() const {
   // The frequency estimate (the integral), not the applied rate with its transient
-  // phase correction. The counter's rate error r satisfies (1 + c)(1 + r) = 1: r ~ -c.
-  const int64_t ppb = -mul_shr_signed(integral_, 1'000'000'000, kCorrectionShift);
-  return static_cast<int32_t>(clamp64(ppb, INT32_MIN, INT32_MAX));
+  // phase correction.
+  return correction_to_ppb(integral_);
 }
 
 int32_t ClockServo::offset_ns() const {

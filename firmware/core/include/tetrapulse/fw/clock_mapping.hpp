@@ -17,6 +17,10 @@ constexpr unsigned kCorrectionShift = 40;  // correction is a fraction in units 
 constexpr unsigned kNsPerTickShift = 40;
 constexpr unsigned kTicksPerNsShift = 48;
 
+// The local counter's rate error in ppb for a rate correction c (2^-40 units): the
+// counter runs at (1 + r) of nominal with (1 + c)(1 + r) = 1, so r = -c / (1 + c).
+int32_t correction_to_ppb(int64_t correction);
+
 class ClockMapping {
  public:
   ClockMapping() = default;

@@ -36,7 +36,7 @@ struct ServoTuning {
   int64_t lock_threshold_ns = 300;      // |filtered error| below this ...
   uint8_t lock_count = 8;               // ... for this many consecutive samples: locked
   int64_t gate_acquiring_ns = 50'000;   // outlier gate before lock
-  int64_t gate_locked_ns = 2'000;       // outlier gate once locked
+  int64_t gate_locked_ns = 1'000;       // outlier gate once locked
   uint32_t gate_growth_ppb = 10'000;    // the gate widens by this rate while no sample is accepted
   uint8_t restep_after = 5;             // consecutive outliers that restart acquisition
   int64_t min_baseline_ns = 5'000'000;  // second acquisition sample at least this long after the first
