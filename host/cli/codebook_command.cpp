@@ -21,6 +21,7 @@
 #include "tetrapulse/localizer/targets.hpp"
 #include "tetrapulse/host/board_config_yaml.hpp"
 #include "tetrapulse/host/config_text.hpp"
+#include "tetrapulse/host/target_board_config.hpp"
 #include "tetrapulse/protocol/can_id.hpp"
 #include "tetrapulse/protocol/codebook.hpp"
 #include "tetrapulse/protocol/codebook_workspace.hpp"
@@ -124,28 +125,6 @@ Target builtin_geometry() {
   return t;
 }
 
-// A board's configuration for target `t` of `file`: its codes and the file's time base and
-// modulation; node ids 1..254 in target order.
-protocol::Config board_config(const TargetsFile& file, size_t index, protocol::SyncSource sync) {
-  const Target& t = file.targets[index];
-  protocol::Config c = protocol::default_config();
-  c.node_id = static_cast<uint8_t>(index % protocol::kCanLastBoardNode + 1);
-  c.target_id = static_cast<uint16_t>(t.id);
-  for (size_t k = 0; k < kMarkers; ++k) {
-    if (t.markers[k].code) c.codes[k] = protocol::Code{static_cast<uint8_t>(t.markers[k].code->length), t.markers[k].code->bits};
-  }
-  c.modulation = file.modulation.kind == ModulationKind::kTwoLevel ? protocol::Modulation::kTwoLevel
-                 : file.modulation.kind == ModulationKind::kConstant ? protocol::Modulation::kConstant
-                                                                      : protocol::Modulation::kOnOff;
-  if (c.modulation == protocol::Modulation::kTwoLevel) {
-    c.low_level = static_cast<uint16_t>(std::lround(file.modulation.low * 65535.0));
-  }
-  c.bit_period_ns = static_cast<uint32_t>(file.timebase.bit_period_ns);
-  c.epoch_ns = file.timebase.epoch_ns;
-  c.sync_source = sync;
-  return c;
-}
-
 int write_board_configs(const TargetsFile& file, const std::string& folder, protocol::SyncSource sync) {
   for (const Target& t : file.targets) {
     if (t.id > 65535) {
@@ -167,7 +146,7 @@ int write_board_configs(const TargetsFile& file, const std::string& folder, prot
         "Board configuration for target {}{} (tetrapulse codebook); apply with\n"
         "tetrapulse config --file {} --persist --usb SERIAL (or --can IFACE:NODE, --serial PORT)",
         t.id, t.name.empty() ? "" : " (" + t.name + ")", path);
-    auto written = write_text_file(path, host::format_board_config_yaml(board_config(file, i, sync), header));
+    auto written = write_text_file(path, host::format_board_config_yaml(host::target_board_config(file, i, sync), header));
     if (!written) {
       codebook_error(written.error().what());
       return kExitBadInput;

@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "tetrapulse/host/exposure.hpp"
 #include "tetrapulse/host/host_error.hpp"
@@ -46,14 +47,41 @@ struct GpioStrobeOptions {
   int64_t frame_period_ns = 0;   // > 0: number frames by time, so missed pulses skip numbers
 };
 
+// What the sync master needs of its line and of time: a libgpiod line on CLOCK_MONOTONIC
+// (GpioSync::trigger/strobe with a RigClock), or a simulated line in simulated rig time (the
+// virtual rig, host/sim_rig.hpp). Levels are logical: true = active (a trigger pulse, or
+// the strobe while the sensor integrates, active_low already applied).
+class GpioSyncLine {
+ public:
+  struct Edge {
+    bool active = false;  // the line became active (else inactive)
+    int64_t rig_ns = 0;   // when, in rig time
+  };
+  virtual ~GpioSyncLine() = default;
+  virtual const std::string& name() const = 0;  // "gpio:gpiochip0:3"
+  virtual int64_t now() const = 0;              // rig time
+  // Waits until rig time `rig_ns`; false when `stop` was set first (checked at least every 100 ms).
+  virtual bool sleep_until(int64_t rig_ns, const std::atomic<bool>& stop) = 0;
+  // Output line: sets the level; returns the rig time it took effect.
+  virtual HostResult<int64_t> set(bool active) = 0;
+  // Input line: the edges that come within `timeout_ns` (empty: none).
+  virtual HostResult<std::vector<Edge>> wait_edges(int64_t timeout_ns) = 0;
+};
+
 class GpioSync {
  public:
+  // Opens `options.line` through libgpiod, rig time = CLOCK_MONOTONIC through `clock`.
   static HostResult<std::unique_ptr<GpioSync>> trigger(const GpioTriggerOptions& options, RigClock clock);
   static HostResult<std::unique_ptr<GpioSync>> strobe(const GpioStrobeOptions& options, RigClock clock);
+  // Over any line (options.line and active_low are then the line's business).
+  static HostResult<std::unique_ptr<GpioSync>> trigger(const GpioTriggerOptions& options,
+                                                       std::unique_ptr<GpioSyncLine> line);
+  static std::unique_ptr<GpioSync> strobe(const GpioStrobeOptions& options, std::unique_ptr<GpioSyncLine> line);
   ~GpioSync();
 
   // Runs until `stop` is set (checked at least every 100 ms) or `max_frames` exposures were
   // reported (0: no limit); calls `on_exposure` for each. Returns how many were reported.
+  // A later call goes on where this one stopped (trigger: with the next pulse).
   HostResult<uint64_t> run(const std::atomic<bool>& stop, uint64_t max_frames,
                            const std::function<void(const Exposure&)>& on_exposure);
 
