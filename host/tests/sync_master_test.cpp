@@ -3,6 +3,7 @@
 // strobe edge pairing, and the exposures file.
 #include <gtest/gtest.h>
 
+#include <deque>
 #include <fstream>
 #include <sstream>
 
@@ -10,6 +11,7 @@
 #include "fake_can_bus.hpp"
 #include "tetrapulse/host/can_sync.hpp"
 #include "tetrapulse/host/exposure.hpp"
+#include "tetrapulse/host/gpio_sync.hpp"
 
 namespace tetrapulse::host {
 namespace {
@@ -126,6 +128,110 @@ TEST(ExposureLogWriter, WritesTheHeaderAndOneFlushedRowPerExposure) {
   auto bad = ExposureLogWriter::create("/nonexistent/dir/exposures.csv");
   ASSERT_FALSE(bad);
   EXPECT_EQ(bad.error().kind, HostErrorKind::kBadFile);
+}
+
+
+// A GPIO line on a clock the test moves: sleeping jumps to the time asked for (plus a
+// scripted lateness), setting the line takes `set_ns`, and input edges come from a script.
+class ScriptedLine : public GpioSyncLine {
+ public:
+  int64_t clock = 0;
+  int64_t set_ns = 3'000;                   // the set-value call takes this long
+  std::vector<std::pair<int64_t, bool>> levels;  // (time, active) as set
+  std::deque<Edge> input;                   // edges to report, in order
+  int64_t late_at = -1;                     // one sleep that overshoots by `late_by`
+  int64_t late_by = 0;
+
+  const std::string& name() const override { return name_; }
+  int64_t now() const override { return clock; }
+  bool sleep_until(int64_t t, const std::atomic<bool>& stop) override {
+    if (stop.load()) return false;
+    if (t > clock) clock = t;
+    if (t == late_at) clock += late_by;
+    return true;
+  }
+  HostResult<int64_t> set(bool active) override {
+    clock += set_ns;
+    levels.emplace_back(clock - set_ns / 2, active);
+    return clock - set_ns / 2;
+  }
+  HostResult<std::vector<Edge>> wait_edges(int64_t timeout_ns) override {
+    std::vector<Edge> out;
+    while (!input.empty() && input.front().rig_ns <= clock + timeout_ns) {
+      out.push_back(input.front());
+      input.pop_front();
+    }
+    clock += timeout_ns;
+    return out;
+  }
+
+ private:
+  std::string name_ = "gpio:scripted";
+};
+
+TEST(GpioSync, TriggerPulsesAtTheFrameGridAndReportsWhenTheLineReallyChanged) {
+  auto line = std::make_unique<ScriptedLine>();
+  ScriptedLine* l = line.get();
+  l->clock = 95'000'000;
+  GpioTriggerOptions o;
+  o.frame_period_ns = 10'000'000;
+  o.exposure_ns = 2'000'000;
+  auto trigger = GpioSync::trigger(o, std::move(line));
+  ASSERT_TRUE(trigger) << trigger.error().what();
+  EXPECT_EQ((*trigger)->first_edge_ns(), 100'000'000) << "the next whole period at least 1 ms away";
+  std::atomic<bool> stop{false};
+  std::vector<Exposure> seen;
+  auto n = (*trigger)->run(stop, 3, [&](const Exposure& e) { seen.push_back(e); });
+  ASSERT_TRUE(n) << n.error().what();
+  ASSERT_EQ(seen.size(), 3u);
+  for (int64_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(seen[static_cast<size_t>(k)].frame, k);
+    EXPECT_EQ(seen[static_cast<size_t>(k)].timestamp_ns, 100'000'000 + k * 10'000'000 + 1'500);
+    EXPECT_EQ(seen[static_cast<size_t>(k)].exposure_ns, 2'000'000);
+  }
+  // A later run goes on with the next pulse; a pulse set late is stamped when it happened.
+  l->late_at = 130'000'000;
+  l->late_by = 6'000'000;
+  seen.clear();
+  n = (*trigger)->run(stop, 2, [&](const Exposure& e) { seen.push_back(e); });
+  ASSERT_TRUE(n);
+  ASSERT_EQ(seen.size(), 2u);
+  EXPECT_EQ(seen[0].frame, 3);
+  EXPECT_EQ(seen[0].timestamp_ns, 136'000'000 + 1'500);
+  EXPECT_EQ(seen[1].frame, 4);
+  // A host busy for more than half a period skips to the next pulse on time: frame
+  // numbers stay on the grid (5 is missed).
+  l->clock = 156'000'000;
+  seen.clear();
+  n = (*trigger)->run(stop, 1, [&](const Exposure& e) { seen.push_back(e); });
+  ASSERT_TRUE(n);
+  ASSERT_EQ(seen.size(), 1u);
+  EXPECT_EQ(seen[0].frame, 6);
+  EXPECT_EQ(seen[0].timestamp_ns, 160'000'000 + 1'500);
+  auto bad = GpioSync::trigger(GpioTriggerOptions{GpioLineAddress{}, 10, 10, false, {}}, std::make_unique<ScriptedLine>());
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().what().find("gpio:scripted: exposure 10 ns"), std::string::npos) << bad.error().what();
+}
+
+TEST(GpioSync, StrobeEdgesBecomeExposuresInRigTime) {
+  auto line = std::make_unique<ScriptedLine>();
+  for (int64_t start : {1'000'000, 11'000'000, 41'000'000}) {  // frames 2 and 3 never strobed
+    line->input.push_back(GpioSyncLine::Edge{true, start});
+    line->input.push_back(GpioSyncLine::Edge{false, start + 2'500'000});
+  }
+  GpioStrobeOptions o;
+  o.frame_period_ns = 10'000'000;
+  auto strobe = GpioSync::strobe(o, std::move(line));
+  std::atomic<bool> stop{false};
+  std::vector<Exposure> seen;
+  auto n = strobe->run(stop, 3, [&](const Exposure& e) { seen.push_back(e); });
+  ASSERT_TRUE(n) << n.error().what();
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[0].timestamp_ns, 1'000'000);
+  EXPECT_EQ(seen[0].exposure_ns, 2'500'000);
+  EXPECT_EQ(seen[1].frame, 1);
+  EXPECT_EQ(seen[2].frame, 4);
+  EXPECT_EQ(seen[2].timestamp_ns, 41'000'000);
 }
 
 }  // namespace
