@@ -1,5 +1,6 @@
 #include "tetrapulse/host/board_config_yaml.hpp"
 
+#include <filesystem>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -144,6 +145,8 @@ HostResult<protocol::Config> parse_board_config_yaml(const std::string& text, co
 }
 
 HostResult<protocol::Config> read_board_config_yaml(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return host_error(HostErrorKind::kBadFile, path, "is a folder, not a file");
   auto text = read_text_file(path);
   if (!text) return host_error(HostErrorKind::kBadFile, "", text.error().what());
   return parse_board_config_yaml(*text, path);

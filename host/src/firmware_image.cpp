@@ -1,5 +1,6 @@
 #include "tetrapulse/host/firmware_image.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -45,6 +46,8 @@ HostResult<FirmwareImage> check_firmware_image(std::vector<uint8_t> bytes, const
 }
 
 HostResult<FirmwareImage> read_firmware_image(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return host_error(HostErrorKind::kBadFile, path, "is a folder, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) return host_error(HostErrorKind::kBadFile, path, "cannot read the file");
   std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

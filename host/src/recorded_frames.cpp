@@ -76,6 +76,8 @@ HostResult<std::vector<FrameRecord>> frames_from_exposures(const std::vector<Exp
 }
 
 HostResult<std::vector<Exposure>> read_exposures_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return host_error(HostErrorKind::kBadFile, path, "is a folder, not a file");
   std::ifstream in(path);
   if (!in) return host_error(HostErrorKind::kBadFile, path, "cannot read the file");
   std::string line;
