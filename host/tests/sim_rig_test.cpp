@@ -10,6 +10,7 @@
 
 #include "tetrapulse/host/sim_rig.hpp"
 #include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/sim/builtin_scenarios.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"
 
 namespace tetrapulse::host {
@@ -138,6 +139,23 @@ TEST(HostSyncedRig, DatasetEqualsTheOneSimMakesDirectly) {
   }
   EXPECT_GE(files, 5u + 4u) << "camera, targets, frames, groundtruth, scenario and four images";
   std::filesystem::remove_all(dir);
+}
+
+
+TEST(HostSyncedRig, EveryBuiltinScenariosBoardsTakeTheirTargetsYamlThroughTheHost) {
+  for (const sim::BuiltinScenario& b : sim::builtin_scenarios()) {
+    const sim::Scenario s = scenario(b.name);
+    auto rig = HostSyncedRig::create(s);
+    ASSERT_TRUE(rig) << b.name << ": " << rig.error().what();
+    (*rig)->run_until(s.frames.start_ns + s.frames.period_ns);
+    EXPECT_FALSE((*rig)->failure()) << b.name;
+    for (size_t i = 0; i < (*rig)->boards(); ++i) {
+      sim::FirmwareBoardEmitter direct(s, i);
+      EXPECT_TRUE(direct.configured()) << b.name << " target " << i << ": sim plays it with its own board too";
+      direct.run_until(s.frames.start_ns + s.frames.period_ns);
+      EXPECT_EQ((*rig)->board(i).leds().log().size(), direct.board().leds().log().size()) << b.name << " target " << i;
+    }
+  }
 }
 
 }  // namespace
