@@ -35,11 +35,7 @@ protocol::Config board_config(const Scenario& s, size_t index, int64_t power_on_
   }
   c.low_level = static_cast<uint16_t>(std::lround(s.targets.modulation.low * 65535.0));
   c.bit_period_ns = static_cast<uint32_t>(s.targets.timebase.bit_period_ns);
-  // The epoch in the board's own time, so that its b(t) is the contract's (header).
-  const long double rate = 1.0L + static_cast<long double>(clock.drift_ppm) * 1e-6L;
-  int64_t shift = clock.offset_ns;
-  if (clock.free_running) shift += static_cast<int64_t>(std::llround(static_cast<long double>(power_on_ns) * rate));
-  c.epoch_ns = s.targets.timebase.epoch_ns - shift;
+  c.epoch_ns = firmware_board_epoch_ns(s, index, power_on_ns);
   switch (clock.sync) {
     case BoardSync::kGpio:
       c.sync_source = protocol::SyncSource::kGpio;
@@ -57,26 +53,50 @@ protocol::Config board_config(const Scenario& s, size_t index, int64_t power_on_
 
 }  // namespace
 
+sim_board::SimBoardOptions firmware_board_options(const Scenario& scenario, size_t index,
+                                                  const FirmwareEmitterOptions& options) {
+  sim_board::SimBoardOptions o;
+  o.clock_ppm = scenario.simulation[index].clock.drift_ppm;
+  o.power_on_ns = scenario.frames.start_ns - options.lead_in_ns;
+  o.node_id = static_cast<uint8_t>(1 + index % 254);
+  for (size_t i = 0; i < o.serial.size(); ++i) o.serial[i] = static_cast<uint8_t>((index + 1) * 37 + i);
+  return o;
+}
+
+int64_t firmware_board_epoch_ns(const Scenario& scenario, size_t index, int64_t power_on_ns) {
+  const BoardClockSpec& clock = scenario.simulation[index].clock;
+  const long double rate = 1.0L + static_cast<long double>(clock.drift_ppm) * 1e-6L;
+  int64_t shift = clock.offset_ns;
+  if (clock.free_running) shift += static_cast<int64_t>(std::llround(static_cast<long double>(power_on_ns) * rate));
+  return scenario.targets.timebase.epoch_ns - shift;
+}
+
+int64_t firmware_first_sync_edge_ns(const Scenario& scenario, const FirmwareEmitterOptions& options) {
+  const int64_t lead_edges = (options.lead_in_ns - kSecond) / scenario.frames.period_ns;
+  return scenario.frames.start_ns - lead_edges * scenario.frames.period_ns;
+}
+
+CanSyncLatency::CanSyncLatency(const FirmwareEmitterOptions& options, size_t index)
+    : max_ns_(options.can_latency_ns), state_(options.seed * 0x2545F4914F6CDD1Dull + index) {}
+
+int64_t CanSyncLatency::next() {
+  return max_ns_ > 0 ? static_cast<int64_t>(splitmix(&state_) % static_cast<uint64_t>(max_ns_ + 1)) : 0;
+}
+
 FirmwareBoardEmitter::FirmwareBoardEmitter(const Scenario& scenario, size_t index, const FirmwareEmitterOptions& options)
     : options_(options),
       sync_(scenario.simulation[index].clock.sync),
       sync_loss_(scenario.simulation[index].clock.sync_loss),
-      edge_period_ns_(scenario.frames.period_ns) {
-  const BoardClockSpec& clock = scenario.simulation[index].clock;
-  const int64_t power_on = scenario.frames.start_ns - options.lead_in_ns;
-  sim_board::SimBoardOptions o;
-  o.clock_ppm = clock.drift_ppm;
-  o.power_on_ns = power_on;
-  o.node_id = static_cast<uint8_t>(1 + index % 254);
-  for (size_t i = 0; i < o.serial.size(); ++i) o.serial[i] = static_cast<uint8_t>((index + 1) * 37 + i);
+      edge_period_ns_(scenario.frames.period_ns),
+      latency_(options, index) {
+  const sim_board::SimBoardOptions o = firmware_board_options(scenario, index, options);
+  const int64_t power_on = o.power_on_ns;
   board_ = std::make_unique<sim_board::SimBoard>(o);
   host_ = std::make_unique<sim_board::HostPort>(*board_);
-  rng_ = options.seed * 0x2545F4914F6CDD1Dull + index;
 
   // The first strobe comes a second after power-up, the host's coarse time half a second
   // before it.
-  const int64_t lead_edges = (options.lead_in_ns - kSecond) / edge_period_ns_;
-  const int64_t first_edge = scenario.frames.start_ns - lead_edges * edge_period_ns_;
+  const int64_t first_edge = firmware_first_sync_edge_ns(scenario, options);
   board_->advance_to(power_on + 10 * kMs);
   const protocol::Message set{1, protocol::SetConfig{board_config(scenario, index, power_on)}};
   const protocol::Result<protocol::Message> answer = host_->request(fw::LinkKind::kUsb, set);
@@ -91,7 +111,7 @@ void FirmwareBoardEmitter::feed_sync_until(int64_t rig_ns) const {
   if (sync_ == BoardSync::kGpio) {
     // Coarse time: a FollowUp over USB every second, 300 us late; its own Sync is not
     // needed for numbering edges.
-    constexpr int64_t kUsbLatency = 300'000;
+    constexpr int64_t kUsbLatency = kCoarseTimeLatencyNs;
     const auto coarse_until = [&](int64_t t) {
       for (; next_coarse_ns_ + kUsbLatency <= t; next_coarse_ns_ += kSecond) {
         host_->send(fw::LinkKind::kUsb, protocol::Message{0, protocol::FollowUp{coarse_seq_++, next_coarse_ns_}},
@@ -108,8 +128,7 @@ void FirmwareBoardEmitter::feed_sync_until(int64_t rig_ns) const {
     for (; next_sync_ns_ + kMs <= rig_ns; next_sync_ns_ += options_.can_sync_period_ns) {
       const uint16_t seq = sync_seq_++;
       if (sync_loss_.find(next_sync_ns_) != nullptr) continue;
-      const int64_t latency =
-          options_.can_latency_ns > 0 ? static_cast<int64_t>(splitmix(&rng_) % static_cast<uint64_t>(options_.can_latency_ns + 1)) : 0;
+      const int64_t latency = latency_.next();
       host_->send(fw::LinkKind::kCan, protocol::Message{0, protocol::Sync{seq}}, next_sync_ns_ + latency);
       host_->send(fw::LinkKind::kCan, protocol::Message{0, protocol::FollowUp{seq, next_sync_ns_}}, next_sync_ns_ + kMs);
     }

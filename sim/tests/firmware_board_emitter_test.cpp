@@ -122,6 +122,21 @@ TEST(FirmwareBoardEmitter, FreeRunningBoardPlaysTheContractsDriftingClock) {
   EXPECT_LT(a.max_abs_ns, 1000.0);
 }
 
+// Frequency codes of different lengths on one board (the `frequency` scenario's target 4:
+// 39, 44, 47 and 60 bits on its four markers, free-running at -120 ppm) and one length on
+// all markers (target 1, +180 ppm): the firmware plays the contract's edges.
+TEST(FirmwareBoardEmitter, PlaysFrequencyCodesOfDifferentLengthsPerMarker) {
+  const Scenario s = builtin("frequency");
+  for (size_t target : {size_t{3}, size_t{0}}) {
+    const Agreement a = compare(s, target, FirmwareEmitterOptions{}, 2);
+    std::printf("[measure] board emitter vs contract, frequency codes, target %zu: %zu edges, max |dt| %.1f ns\n",
+                target, a.edges, a.max_abs_ns);
+    EXPECT_GT(a.edges, 1000u);
+    EXPECT_LT(a.max_abs_ns, 1000.0);
+    EXPECT_LT(a.max_emission_diff, 2e-3);
+  }
+}
+
 TEST(FirmwareBoardEmitter, IsTheDefaultWhenTheFirmwareIsBuilt) {
   const Scenario s = builtin("paper-exp1");
   const auto emitter = default_board_emitter()(s, 0);

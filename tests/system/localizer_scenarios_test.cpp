@@ -126,10 +126,21 @@ TEST(Scenarios, PaperExp1WithKalmanPredictionAndKneipP3P) {
   EXPECT_LE(all.orientation_rad.mean, 0.3 * kDeg);
 }
 
+// Built-ins the Localizer does not take yet, and why.
+const char* const kNotLocalized[][2] = {
+    {"frequency", "frequency codes are identified by FrequencyIdentifier (tests/frequency_rig_test.cpp), "
+                  "which the Localizer does not use yet"},
+};
+
 TEST(Scenarios, EveryBuiltinIsCovered) {
   for (const sim::BuiltinScenario& b : sim::builtin_scenarios()) {
     bool found = false;
     for (const Acceptance& a : kScenarios) found = found || b.name == a.scenario;
+    for (const auto& n : kNotLocalized)
+      if (b.name == n[0]) {
+        std::printf("%s: not localized here: %s\n", n[0], n[1]);
+        found = true;
+      }
     EXPECT_TRUE(found) << b.name;
   }
 }

@@ -1,24 +1,11 @@
 #include "tetrapulse/fw/update_receiver.hpp"
 
+#include "tetrapulse/fw/update_slot.hpp"
+
 namespace tetrapulse::fw {
 
 using protocol::Error;
 using protocol::UpdateState;
-
-namespace {
-
-// The slot being written must not stay marked pending: the bootloader would try it.
-protocol::Status clear_pending(RecordStore& store, uint8_t slot) {
-  const protocol::Result<BootState> state = load_boot_state(store);
-  if (!state || state->pending_slot != slot) return {};
-  BootState s = *state;
-  s.pending_slot = kNoSlot;
-  s.attempts = 0;
-  s.pending_version = 0;
-  return save_boot_state(store, s);
-}
-
-}  // namespace
 
 UpdateReceiver::UpdateReceiver(Flash& flash, const FlashLayout& layout, RecordStore& store, const BoardModel& board,
                                uint8_t active_slot)
@@ -37,17 +24,9 @@ protocol::Result<uint32_t> UpdateReceiver::begin(const protocol::UpdateBegin& re
   const SlotLayout& slot = layout_.slots[target_];
   if (request.image_size > slot.region.size) return Error::kImageRejected;
   state_ = UpdateState::kIdle;
-  if (!clear_pending(store_, target_)) {
+  if (!clear_pending_slot(store_, target_) || !erase_slot(flash_, slot)) {
     flash_failed();
     return Error::kFlashError;
-  }
-  for (uint32_t a = slot.region.address; a < slot.region.end();) {
-    const protocol::Result<FlashRegion> sector = flash_.sector_at(a);
-    if (!sector || !flash_.erase_sector(sector->address)) {
-      flash_failed();
-      return Error::kFlashError;
-    }
-    a = sector->end();
   }
   begin_ = request;
   next_offset_ = 0;
@@ -92,13 +71,8 @@ protocol::Result<uint32_t> UpdateReceiver::verify() {
     state_ = UpdateState::kFailed;
     return Error::kImageRejected;
   }
-  const protocol::Result<BootState> stored = load_boot_state(store_);
-  BootState state = stored ? *stored : BootState{};
-  if (!stored) state.confirmed_slot = target_ == 0 ? 1 : 0;  // the running slot
-  state.pending_slot = target_;
-  state.attempts = 0;
-  state.pending_version = begin_.version;
-  if (!save_boot_state(store_, state)) {
+  const uint8_t running = target_ == 0 ? 1 : 0;  // confirmed when no boot state is stored
+  if (!mark_slot_pending(store_, target_, begin_.version, running)) {
     flash_failed();
     return Error::kFlashError;
   }
@@ -107,7 +81,7 @@ protocol::Result<uint32_t> UpdateReceiver::verify() {
 }
 
 protocol::Status UpdateReceiver::abort() {
-  if (state_ == UpdateState::kVerified && !clear_pending(store_, target_)) {
+  if (state_ == UpdateState::kVerified && !clear_pending_slot(store_, target_)) {
     if (flash_errors_ != UINT16_MAX) ++flash_errors_;
     return Error::kFlashError;  // still verified: the slot stays pending
   }

@@ -1,62 +1,61 @@
 #pragma once
-// Running the built `tetrapulse` binary as a user would, for CLI tests: its exit
-// code and everything it printed; and a temporary folder removed afterwards.
-#include <array>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <string>
-
+// Runs the built `tetrapulse` binary as a user would, with its stdout, stderr and exit code.
 #include <sys/wait.h>
 #include <unistd.h>
 
-namespace tetrapulse::cli_testing {
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace tetrapulse::cli::testing {
 
 struct CliRun {
-  int exit_code = -1;  // 128 + signal when it was killed
-  std::string output;  // stdout and stderr
+  int exit = -1;
+  std::string out;
+  std::string err;
+  // Lines on stderr (an error is exactly one).
+  size_t err_lines() const { return static_cast<size_t>(std::count(err.begin(), err.end(), '\n')); }
 };
 
-inline CliRun run_cli(const std::string& args) {
-  CliRun r;
-  const std::string cmd = std::string(TETRAPULSE_CLI) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
-}
-
-class TempDir {
+class CliTempDir {
  public:
-  explicit TempDir(const std::string& stem)
+  explicit CliTempDir(const std::string& tag)
       : path_(std::filesystem::temp_directory_path() /
-              (stem + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter()++))) {
+              ("tp_cli_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++))) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  std::string path(const std::string& name = "") const { return (path_ / name).string(); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path(name), std::ios::binary) << text;
+  ~CliTempDir() { std::filesystem::remove_all(path_); }
+  std::string path(const std::string& name) const { return (path_ / name).string(); }
+  std::string file(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name)) << text;
     return path(name);
   }
 
  private:
-  static int& counter() {
-    static int n = 0;
-    return n;
-  }
+  static inline int counter_ = 0;
   std::filesystem::path path_;
 };
 
-}  // namespace tetrapulse::cli_testing
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// `tetrapulse ARGS` (ARGS as shell words, already quoted where needed).
+inline CliRun run_cli(const CliTempDir& dir, const std::string& args) {
+  const std::string command = std::string("'") + TETRAPULSE_CLI + "' " + args + " >'" + dir.path("stdout") + "' 2>'" +
+                              dir.path("stderr") + "'";
+  const int status = std::system(command.c_str());
+  CliRun r;
+  r.exit = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(dir.path("stdout"));
+  r.err = slurp(dir.path("stderr"));
+  return r;
+}
+
+}  // namespace tetrapulse::cli::testing

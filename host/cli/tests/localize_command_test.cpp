@@ -18,9 +18,18 @@ namespace tetrapulse {
 namespace {
 
 namespace fs = std::filesystem;
-using cli_testing::CliRun;
-using cli_testing::run_cli;
-using cli_testing::TempDir;
+using TempDir = cli::testing::CliTempDir;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string output;  // stdout, then stderr
+};
+
+CliRun run_cli(const std::string& args) {
+  static const TempDir io("localize_io");
+  const cli::testing::CliRun r = cli::testing::run_cli(io, args);
+  return CliRun{r.exit, r.out + r.err};
+}
 
 std::string read(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -36,7 +45,7 @@ size_t lines(const std::string& text) { return size_t(std::count(text.begin(), t
 class LocalizeCommand : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    source_ = new TempDir("tp_cli_localize_source");
+    source_ = new TempDir("localize_source");
     const CliRun r = run_cli("sim paper-exp1 --frames 24 --seed 3 --out " + source_->path("data"));
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
@@ -62,7 +71,7 @@ class LocalizeCommand : public ::testing::Test {
   }
 
   static TempDir* source_;
-  TempDir dir_{"tp_cli_localize"};
+  TempDir dir_{"localize"};
   int copies_ = 0;
 };
 TempDir* LocalizeCommand::source_ = nullptr;
@@ -191,7 +200,7 @@ TEST_F(LocalizeCommand, GarbledTimestampNamesFramesCsvLine) {
 
 TEST_F(LocalizeCommand, EvalRefusesAGarbledPosesFile) {
   const std::string data = copy();
-  const std::string poses = dir_.write("poses.csv",
+  const std::string poses = dir_.file("poses.csv",
                                        "frame,timestamp_ns,target,x,y,z,qx,qy,qz,qw,markers,reprojection_px\n"
                                        "0,5000000,1,0.1,0.2,nan?,0,0,0,1,4,0.2\n");
   const CliRun r = run_cli("eval " + data + " " + poses);

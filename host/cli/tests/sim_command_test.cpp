@@ -2,12 +2,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
-#include "cli_run.hpp"
 #include "tetrapulse/localizer/rig_dataset.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 
@@ -16,9 +18,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using cli_testing::CliRun;
+struct CliRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
 
-CliRun run(const std::string& args) { return cli_testing::run_cli(args); }
+CliRun run(const std::string& args) {
+  CliRun r;
+  const std::string cmd = std::string(TETRAPULSE_CLI) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
 
 class TempDir {
  public:
@@ -95,6 +111,22 @@ TEST(SimCommand, BadScenarioFilesGiveOneLineNamingFileLineAndField) {
   }
   EXPECT_EQ(run("sim " + dir.path("missing.yaml") + " --out " + dir.path("o")).exit_code, 3);
   EXPECT_EQ(run("sim paper-exp1").exit_code, 2);  // no --out
+}
+
+
+TEST(SimCommand, HostBoardsGiveTheSameDataset) {
+  TempDir dir;
+  const CliRun direct = run("sim paper-exp1 --frames 3 --out " + dir.path("direct"));
+  ASSERT_EQ(direct.exit_code, 0) << direct.output;
+  const CliRun host = run("sim paper-exp1 --frames 3 --host-boards --out " + dir.path("host"));
+  ASSERT_EQ(host.exit_code, 0) << host.output;
+  for (const char* file : {"frames.csv", "groundtruth.csv", "frames/000000.png", "frames/000002.png"}) {
+    std::ifstream a(dir.path("direct") + "/" + file, std::ios::binary), b(dir.path("host") + "/" + file, std::ios::binary);
+    const std::string da((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+    const std::string db((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+    EXPECT_FALSE(da.empty()) << file;
+    EXPECT_EQ(da, db) << file;
+  }
 }
 
 }  // namespace

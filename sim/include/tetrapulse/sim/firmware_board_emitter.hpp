@@ -30,6 +30,30 @@ struct FirmwareEmitterOptions {
   uint64_t seed = 1;
 };
 
+// What the board of target `index` is, and how it is synchronized; shared with the host's
+// virtual rig (host/sim_rig.hpp), which configures and syncs the same boards through the
+// host's Board and sync master code instead.
+sim_board::SimBoardOptions firmware_board_options(const Scenario& scenario, size_t index,
+                                                  const FirmwareEmitterOptions& options);
+// The epoch the board is given, in its own time, so that its b(t) is the contract's (header).
+int64_t firmware_board_epoch_ns(const Scenario& scenario, size_t index, int64_t power_on_ns);
+// GPIO: rig time of the first strobe edge (a second after power-up, on the frame grid); the
+// host's coarse-time FollowUps go over USB from half a second before it, once a second,
+// arriving kCoarseTimeLatencyNs late.
+int64_t firmware_first_sync_edge_ns(const Scenario& scenario, const FirmwareEmitterOptions& options);
+constexpr int64_t kCoarseTimeLatencyNs = 300'000;
+// CAN: how late each Sync reaches board `index`, 0..options.can_latency_ns, drawn in order
+// for the Syncs it receives (seeded).
+class CanSyncLatency {
+ public:
+  CanSyncLatency(const FirmwareEmitterOptions& options, size_t index);
+  int64_t next();
+
+ private:
+  int64_t max_ns_;
+  uint64_t state_;
+};
+
 class FirmwareBoardEmitter : public LedEmitter {
  public:
   FirmwareBoardEmitter(const Scenario& scenario, size_t index, const FirmwareEmitterOptions& options = {});
@@ -56,7 +80,7 @@ class FirmwareBoardEmitter : public LedEmitter {
   mutable uint16_t sync_seq_ = 0;
   mutable int64_t next_coarse_ns_ = 0;  // GPIO: next coarse-time FollowUp (over USB)
   mutable uint16_t coarse_seq_ = 0;
-  mutable uint64_t rng_ = 0;
+  mutable CanSyncLatency latency_;
   bool configured_ = false;
 };
 
