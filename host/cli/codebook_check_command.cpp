@@ -1,5 +1,7 @@
 // `tetrapulse codebook check FILE`: whether a targets.yaml's codes meet the
-// codebook constraints (protocol/SPEC.md §8), and which codes fail which.
+// codebook constraints (protocol/SPEC.md §8), and which codes fail which. Binary
+// words by the binary rules (§8.4), square waves by the frequency rules at the
+// camera given (§8.5), and in a mixed file each binary word apart from the square waves.
 #include <algorithm>
 #include <memory>
 #include <optional>
@@ -11,8 +13,10 @@
 #include "codebook_constraints.hpp"
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "frequency_codebook_check.hpp"
 #include "tetrapulse/localizer/dataset_io.hpp"
 #include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/protocol/frequency_code.hpp"
 #include "tetrapulse/protocol/limits.hpp"
 
 namespace tetrapulse::cli {
@@ -27,6 +31,7 @@ constexpr size_t kMarkers = protocol::kMarkersPerTarget;
 
 struct CheckArgs {
   CodebookConstraintArgs constraints;
+  FrequencyCodebookArgs frequency;  // the camera, for frequency codes
   std::string file;
   std::string per = "auto";
 };
@@ -66,71 +71,35 @@ std::string fault_text(const CodebookReport& r, const CodebookSpec& spec, const 
   return fmt::format("{}: {}", who, protocol::codebook_fault_name(r.fault));
 }
 
-int run_check(const CheckArgs& a) {
-  auto file = read_targets_yaml(a.file);
-  if (!file) {
-    codebook_error(file.error().what());
-    return kExitBadInput;
-  }
-  if (file->modulation.kind == ModulationKind::kConstant) {
-    codebook_error(fmt::format("{}: modulation.kind is constant, so its LEDs play no codes", a.file));
-    return kExitCheckFailed;
-  }
-  // Every marker needs a code of one common length (frequency codes, which may
-  // differ in length, are a later codebook family).
+// The binary codes by the binary rules (SPEC.md §8.4): one common length, each code, each pair.
+int check_binary_family(const CheckArgs& a, const TargetsFile& file, const std::vector<LabelledCode>& binary,
+                        const std::string& what) {
   std::vector<std::string> problems;
-  std::optional<int> length;
-  for (size_t i = 0; i < file->targets.size(); ++i) {
-    for (size_t k = 0; k < kMarkers; ++k) {
-      const auto& code = file->targets[i].markers[k].code;
-      const std::string where = fmt::format("targets[{}] (id {}) marker {}", i, file->targets[i].id, k);
-      if (!code) {
-        problems.push_back(where + ": no code (it would emit constantly and cannot be identified)");
-      } else if (!length) {
-        length = static_cast<int>(code->length);
-      } else if (static_cast<int>(code->length) != *length) {
-        problems.push_back(fmt::format("{}: {} bits, but other codes have {}", where, code->length, *length));
-      }
+  const uint32_t length = binary.front().code.length;
+  for (const LabelledCode& c : binary) {
+    if (c.code.length != length) {
+      problems.push_back(fmt::format("{}: {} bits, but other binary codes have {}", c.label, c.code.length, length));
     }
   }
   if (!problems.empty()) {
     for (const std::string& p : problems) codebook_error(fmt::format("{}: {}", a.file, p));
     return kExitCheckFailed;
   }
-  const bool same_within_targets = std::all_of(file->targets.begin(), file->targets.end(), [](const Target& t) {
-    return std::all_of(t.markers.begin(), t.markers.end(),
-                       [&](const Marker& m) { return *m.code == *t.markers[0].code; });
-  });
-  const bool per_target = a.per == "target" || (a.per == "auto" && same_within_targets);
-  if (per_target && !same_within_targets) {
-    codebook_error(fmt::format("{}: --per target, but some target's markers play different codes", a.file));
-    return kExitCheckFailed;
-  }
-
-  const CodeTiming timing = file->timebase.synchronized ? CodeTiming::kSynchronized : CodeTiming::kFreeRunning;
-  auto spec = codebook_spec(a.constraints, timing, file->modulation.kind, length);
+  const CodeTiming timing = file.timebase.synchronized ? CodeTiming::kSynchronized : CodeTiming::kFreeRunning;
+  auto spec = codebook_spec(a.constraints, timing, file.modulation.kind, static_cast<int>(length));
   if (!spec) {
     codebook_error(spec.error().message);
     return kExitUsage;
   }
-  if (a.constraints.length && *a.constraints.length != *length) {
-    codebook_error(fmt::format("{}: codes have {} bits, not {} (--length)", a.file, *length, *a.constraints.length));
+  if (a.constraints.length && *a.constraints.length != static_cast<int>(length)) {
+    codebook_error(fmt::format("{}: codes have {} bits, not {} (--length)", a.file, length, *a.constraints.length));
     return kExitCheckFailed;
   }
-
   std::vector<uint64_t> codes;
   std::vector<std::string> labels;
-  for (size_t i = 0; i < file->targets.size(); ++i) {
-    const Target& t = file->targets[i];
-    for (size_t k = 0; k < (per_target ? 1 : kMarkers); ++k) {
-      codes.push_back(t.markers[k].code->bits);
-      labels.push_back(per_target ? fmt::format("targets[{}] (id {})", i, t.id)
-                                  : fmt::format("targets[{}] (id {}) marker {}", i, t.id, k));
-    }
-  }
-  if (codes.size() > 0xFFFF) {
-    codebook_error(fmt::format("{}: more than 65535 codes", a.file));
-    return kExitCheckFailed;
+  for (const LabelledCode& c : binary) {
+    codes.push_back(c.code.bits);
+    labels.push_back(c.label);
   }
 
   constexpr size_t kShown = 20;
@@ -152,7 +121,6 @@ int run_check(const CheckArgs& a) {
       closest = std::min(closest, d);
     }
   }
-  const std::string what = fmt::format("{} codes (one per {})", codes.size(), per_target ? "target" : "marker");
   if (faults > 0) {
     if (faults > kShown) codebook_error(fmt::format("{}: ... and {} more", a.file, faults - kShown));
     codebook_error(fmt::format("{}: {} of {} fail: {}", a.file, faults, what, describe_codebook_spec(*spec)));
@@ -163,10 +131,77 @@ int run_check(const CheckArgs& a) {
   return kExitOk;
 }
 
+int run_check(const CheckArgs& a) {
+  auto file = read_targets_yaml(a.file);
+  if (!file) {
+    codebook_error(file.error().what());
+    return kExitBadInput;
+  }
+  if (file->modulation.kind == ModulationKind::kConstant) {
+    codebook_error(fmt::format("{}: modulation.kind is constant, so its LEDs play no codes", a.file));
+    return kExitCheckFailed;
+  }
+  std::vector<std::string> problems;
+  for (size_t i = 0; i < file->targets.size(); ++i) {
+    for (size_t k = 0; k < kMarkers; ++k) {
+      if (!file->targets[i].markers[k].code) {
+        problems.push_back(fmt::format("targets[{}] (id {}) marker {}: no code (it would emit constantly and cannot "
+                                       "be identified)",
+                                       i, file->targets[i].id, k));
+      }
+    }
+  }
+  if (!problems.empty()) {
+    for (const std::string& p : problems) codebook_error(fmt::format("{}: {}", a.file, p));
+    return kExitCheckFailed;
+  }
+  const bool same_within_targets = std::all_of(file->targets.begin(), file->targets.end(), [](const Target& t) {
+    return std::all_of(t.markers.begin(), t.markers.end(),
+                       [&](const Marker& m) { return *m.code == *t.markers[0].code; });
+  });
+  const bool per_target = a.per == "target" || (a.per == "auto" && same_within_targets);
+  if (per_target && !same_within_targets) {
+    codebook_error(fmt::format("{}: --per target, but some target's markers play different codes", a.file));
+    return kExitCheckFailed;
+  }
+
+  // Square waves are frequency codes (SPEC.md §8.5), as the localizer reads them
+  // (localizer/frequency_identifier.hpp); every other code is a binary word.
+  std::vector<LabelledCode> binary, frequency;
+  for (size_t i = 0; i < file->targets.size(); ++i) {
+    const Target& t = file->targets[i];
+    for (size_t k = 0; k < (per_target ? 1 : kMarkers); ++k) {
+      const Code& code = *t.markers[k].code;
+      LabelledCode c{code, per_target ? fmt::format("targets[{}] (id {})", i, t.id)
+                                      : fmt::format("targets[{}] (id {}) marker {}", i, t.id, k)};
+      (protocol::is_square_wave(code.bits, code.length, nullptr) ? frequency : binary).push_back(std::move(c));
+    }
+  }
+  if (binary.size() > 0xFFFF || frequency.size() > 0xFFFF) {
+    codebook_error(fmt::format("{}: more than 65535 codes", a.file));
+    return kExitCheckFailed;
+  }
+  const bool mixed = !binary.empty() && !frequency.empty();
+  auto what = [&](size_t n, const char* family) {
+    return fmt::format("{} {}codes (one per {})", n, mixed ? family : "", per_target ? "target" : "marker");
+  };
+  int exit = kExitOk;
+  if (!binary.empty()) exit = check_binary_family(a, *file, binary, what(binary.size(), "binary "));
+  if (!frequency.empty()) {
+    const int f = check_frequency_family(a.file, *file, a.frequency, frequency, binary,
+                                         what(frequency.size(), "frequency "));
+    exit = exit == kExitOk ? f : exit;
+  }
+  return exit;
+}
+
 }  // namespace
 
 void add_codebook_check_command(CLI::App* codebook, int* result) {
-  auto* check = codebook->add_subcommand("check", "Check the codes of a targets.yaml against the codebook constraints");
+  auto* check = codebook->add_subcommand(
+      "check",
+      "Check the codes of a targets.yaml against the codebook constraints: binary words by the binary rules, square "
+      "waves (frequency codes) at the camera given by --fps and --exposure, and both families apart in a mixed file");
   check->footer(kCodebookDefaultsHelp);
   auto chk = std::make_shared<CheckArgs>();
   check->add_option("file", chk->file, "targets.yaml to check")->required();
@@ -174,6 +209,7 @@ void add_codebook_check_command(CLI::App* codebook, int* result) {
       ->check(CLI::IsMember({"auto", "marker", "target"}))
       ->capture_default_str();
   add_codebook_constraint_options(check, &chk->constraints);
+  add_frequency_camera_options(check, &chk->frequency);
 
   check->callback([result, chk] { *result = run_check(*chk); });
 }

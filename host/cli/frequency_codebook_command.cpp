@@ -35,6 +35,8 @@ std::optional<int64_t> parse_duration_ns(const std::string& text) {
   return static_cast<int64_t>(std::llround(value * scale));
 }
 
+}  // namespace
+
 tl::expected<FrequencySpec, FrequencyCodebookError> frequency_spec(const FrequencyCodebookArgs& a,
                                                                    ModulationKind modulation) {
   auto usage = [](std::string m) { return tl::unexpected(FrequencyCodebookError{std::move(m), kExitUsage}); };
@@ -75,14 +77,16 @@ std::string describe_camera(const FrequencySpec& s, double fps) {
                          : fmt::format(", at most {} dark frames", int(s.max_dark_frames)));
 }
 
-}  // namespace
-
 void add_frequency_codebook_options(CLI::App* cmd, FrequencyCodebookArgs* a) {
   cmd->add_option("--family", a->family,
                   "binary: words of one length (search); frequency: square waves of different lengths kept apart "
                   "in apparent frequency at one camera (needs --fps, --exposure)")
       ->check(CLI::IsMember({"binary", "frequency"}))
       ->capture_default_str();
+  add_frequency_camera_options(cmd, a);
+}
+
+void add_frequency_camera_options(CLI::App* cmd, FrequencyCodebookArgs* a) {
   cmd->add_option("--fps", a->fps, "frequency: the camera's frame rate (Hz)")->check(CLI::Range(0.1, 100000.0));
   cmd->add_option("--exposure", a->exposure, "frequency: the camera's exposure (1ms, 500us, 2000000ns; bare: ms)");
   cmd->add_option("--window-frames", a->window_frames,

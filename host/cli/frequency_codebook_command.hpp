@@ -30,6 +30,8 @@ struct FrequencyCodebookArgs {
 
 // Registers --family and the frequency options on `codebook`.
 void add_frequency_codebook_options(CLI::App* cmd, FrequencyCodebookArgs* a);
+// The frequency options without --family (--fps, --exposure, --window-frames, ...).
+void add_frequency_camera_options(CLI::App* cmd, FrequencyCodebookArgs* a);
 
 // Codes chosen for one request, ready for targets.yaml.
 struct FrequencyChoice {
@@ -45,6 +47,12 @@ struct FrequencyCodebookError {
   std::string message;
   int exit = 0;
 };
+
+// The spec the options describe (count 1; bit period --bit-period-ns or 0), or a usage error.
+tl::expected<protocol::FrequencySpec, FrequencyCodebookError> frequency_spec(const FrequencyCodebookArgs& a,
+                                                                             ModulationKind modulation);
+// "100 fps, 1 ms exposure, apparent frequencies 1/24 cycle per frame apart under 200 ppm, ..."
+std::string describe_camera(const protocol::FrequencySpec& s, double fps);
 
 // `count` codes for this camera, or why not (a request above the capacity says the maximum).
 // `per_marker`/`targets` only shape the error's advice.

@@ -1,5 +1,6 @@
 #include "tetrapulse/protocol/codebook_frequency.hpp"
 
+#include "tetrapulse/protocol/codebook_word.hpp"
 #include "tetrapulse/protocol/config.hpp"
 
 namespace tetrapulse::protocol {
@@ -21,13 +22,21 @@ FrequencyFault apparent_fault(const FrequencySpec& spec, const FrequencyCode& c)
   return FrequencyFault::kNone;
 }
 
+// nu and drift of any signal repeating every `period_ns` (a square wave's, or a binary word's).
+FrequencyCode apparent_of_period(const FrequencySpec& spec, int64_t period_ns) {
+  FrequencyCode c;
+  c.apparent_q32 = apparent_frequency_q32(spec.camera.frame_period_ns, period_ns);
+  c.drift_q32 = frequency_drift_q32(spec.camera.frame_period_ns, period_ns, spec.clock_ppm);
+  return c;
+}
+
 FrequencyCode measure(const FrequencySpec& spec, int64_t bit_period_ns, SquareWave wave, bool visibility) {
   FrequencyCode c;
   c.wave = wave;
   c.word = square_wave_word(wave);
-  const int64_t period = static_cast<int64_t>(wave.length) * bit_period_ns;
-  c.apparent_q32 = apparent_frequency_q32(spec.camera.frame_period_ns, period);
-  c.drift_q32 = frequency_drift_q32(spec.camera.frame_period_ns, period, spec.clock_ppm);
+  const FrequencyCode seen = apparent_of_period(spec, static_cast<int64_t>(wave.length) * bit_period_ns);
+  c.apparent_q32 = seen.apparent_q32;
+  c.drift_q32 = seen.drift_q32;
   if (visibility) c.visibility = wave_visibility(spec.camera, bit_period_ns, wave, kDarkReportCap);
   return c;
 }
@@ -112,6 +121,14 @@ bool before(const FrequencyCode& a, const FrequencyCode& b) {
   return a.wave.length != b.wave.length ? a.wave.length < b.wave.length : a.wave.ones < b.wave.ones;
 }
 
+// A spec and codes a check can use: any count, a bit period given, arrays present.
+bool frequency_check_spec_ok(const FrequencySpec& spec, size_t n, const uint64_t* words, const uint8_t* lengths) {
+  FrequencySpec s = spec;
+  s.count = 1;  // the count of a spec is what generation wants; a check takes any n
+  return check_frequency_spec(s) == nullptr && spec.bit_period_ns != 0 && n <= 0xFFFF &&
+         (n == 0 || (words != nullptr && lengths != nullptr));
+}
+
 }  // namespace
 
 const char* check_frequency_spec(const FrequencySpec& spec) {
@@ -194,10 +211,7 @@ const char* frequency_fault_name(FrequencyFault fault) {
 FrequencyReport check_frequency_codes(const FrequencySpec& spec, const uint64_t* words, const uint8_t* lengths,
                                       size_t n) {
   FrequencyReport r;
-  FrequencySpec s = spec;
-  s.count = 1;  // the count of a spec is what generation wants; a check takes any n
-  if (check_frequency_spec(s) != nullptr || spec.bit_period_ns == 0 || n > 0xFFFF ||
-      (n > 0 && (words == nullptr || lengths == nullptr))) {
+  if (!frequency_check_spec_ok(spec, n, words, lengths)) {
     r.fault = FrequencyFault::kBadSpec;
     return r;
   }
@@ -227,6 +241,29 @@ FrequencyReport check_frequency_codes(const FrequencySpec& spec, const uint64_t*
       const FrequencyCode b = measure(spec, spec.bit_period_ns, wb, false);
       if (pair_margin(a, b) < m) return FrequencyReport{FrequencyFault::kTooClose, static_cast<uint16_t>(i),
                                                         static_cast<uint16_t>(j)};
+    }
+  }
+  return FrequencyReport{};
+}
+
+FrequencyReport check_binary_beside_frequency(const FrequencySpec& spec, const uint64_t* binary_words,
+                                              const uint8_t* binary_lengths, size_t n_binary,
+                                              const uint64_t* frequency_words, const uint8_t* frequency_lengths,
+                                              size_t n_frequency) {
+  if (!frequency_check_spec_ok(spec, n_binary, binary_words, binary_lengths) ||
+      !frequency_check_spec_ok(spec, n_frequency, frequency_words, frequency_lengths)) {
+    return FrequencyReport{FrequencyFault::kBadSpec, 0, 0};
+  }
+  const uint64_t m = window_margin(spec);
+  for (size_t i = 0; i < n_binary; ++i) {
+    const uint32_t p = least_period(binary_words[i], binary_lengths[i]);
+    const FrequencyCode b = apparent_of_period(spec, static_cast<int64_t>(p) * spec.bit_period_ns);
+    for (size_t j = 0; j < n_frequency; ++j) {
+      const FrequencyCode f =
+          apparent_of_period(spec, static_cast<int64_t>(frequency_lengths[j]) * spec.bit_period_ns);
+      if (pair_margin(b, f) < m) {
+        return FrequencyReport{FrequencyFault::kTooClose, static_cast<uint16_t>(i), static_cast<uint16_t>(j)};
+      }
     }
   }
   return FrequencyReport{};

@@ -31,6 +31,13 @@ bool cyclically_closer_than(uint64_t a, uint64_t b, uint32_t length, uint32_t d)
   return false;
 }
 
+uint32_t least_period(uint64_t w, uint32_t length) {
+  for (uint32_t p = 1; p < length; ++p) {
+    if (length % p == 0 && rotate_word(w, p, length) == w) return p;
+  }
+  return length;
+}
+
 ShiftDistance self_shift_distance(uint64_t w, uint32_t length) {
   if (length <= 1) return ShiftDistance{length, 0};
   ShiftDistance best{length + 1, 0};

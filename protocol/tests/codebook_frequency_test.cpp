@@ -197,6 +197,63 @@ TEST(CodebookFrequency, CheckFindsTheFaults) {
   EXPECT_EQ(r.other, 1);
 }
 
+// Binary words beside square waves: a word is seen at the apparent frequency of
+// its least period, and must keep 1/W (plus drifts) from every square wave.
+TEST(CodebookFrequency, BinaryWordsBesideSquareWavesKeepTheirApparentFrequencyApart) {
+  FrequencySpec s = camera_spec(100, 1.0);
+  s.bit_period_ns = 2'500'000;  // "1110000" (7 bits): 17.5 ms, 0.429 cycle per frame
+  const uint64_t freq[] = {square_wave_word(SquareWave{7, 3})};
+  const uint8_t freq_len[] = {7};
+  // 12 bits: 30 ms, 1/3 cycle per frame, 0.095 from 0.429 > 1/24: apart.
+  const uint64_t apart[] = {0b101100111010};
+  const uint8_t apart_len[] = {12};
+  EXPECT_TRUE(check_binary_beside_frequency(s, apart, apart_len, 1, freq, freq_len, 1).ok());
+  // "111000011100001110000" has least period 7: "1110000" again, 21 bits or not.
+  const uint64_t same[] = {apart[0], 0b000011100001110000111};
+  const uint8_t same_len[] = {12, 21};
+  const FrequencyReport r = check_binary_beside_frequency(s, same, same_len, 2, freq, freq_len, 1);
+  EXPECT_EQ(r.fault, FrequencyFault::kTooClose);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.other, 0);
+  // 9 bits: 22.5 ms, 0.444 cycle per frame, 0.016 from 0.429 < 1/24.
+  const uint64_t near[] = {0b110100011};
+  const uint8_t near_len[] = {9};
+  EXPECT_EQ(check_binary_beside_frequency(s, near, near_len, 1, freq, freq_len, 1).fault, FrequencyFault::kTooClose);
+  s.bit_period_ns = 0;
+  EXPECT_EQ(check_binary_beside_frequency(s, apart, apart_len, 1, freq, freq_len, 1).fault, FrequencyFault::kBadSpec);
+}
+
+// The rule matches the apparent frequencies in doubles: whenever the check passes,
+// every clock error within +-ppm leaves the binary word's and each square wave's
+// apparent frequencies 1/W apart.
+RC_GTEST_PROP(CodebookFrequency, BinaryWordsThatPassStayApartUnderClockError, ()) {
+  FrequencySpec s = camera_spec(*rc::gen::inRange(20, 400), 1.0);
+  s.bit_period_ns = *rc::gen::inRange<int64_t>(10'000, 5'000'000);
+  s.window_frames = *rc::gen::inRange<uint16_t>(8, 64);
+  const uint8_t L = *rc::gen::inRange<uint8_t>(2, 65);
+  const uint64_t binary[] = {*rc::gen::arbitrary<uint64_t>() & word_mask(L)};
+  const uint8_t binary_len[] = {L};
+  const uint8_t F = *rc::gen::inRange<uint8_t>(2, 65);
+  const uint64_t freq[] = {square_wave_word(SquareWave{F, static_cast<uint8_t>(F / 2)})};
+  const uint8_t freq_len[] = {F};
+  const bool apart = check_binary_beside_frequency(s, binary, binary_len, 1, freq, freq_len, 1).ok();
+  const double P = s.camera.frame_period_ns * 1e-9;
+  const double fb = 1.0 / (least_period(binary[0], L) * s.bit_period_ns * 1e-9);
+  const double ff = 1.0 / (F * s.bit_period_ns * 1e-9);
+  double least_gap = 1;
+  for (double eb : {-1.0, 1.0}) {
+    for (double ef : {-1.0, 1.0}) {
+      least_gap = std::min(least_gap, std::fabs(apparent(fb * (1 + eb * s.clock_ppm * 1e-6), P) -
+                                                apparent(ff * (1 + ef * s.clock_ppm * 1e-6), P)));
+    }
+  }
+  if (apart) RC_ASSERT(least_gap >= (1.0 / s.window_frames) * (1 - 1e-6));
+  // And the rule is not much stricter than that: a gap of twice the margin plus the drifts passes.
+  const double drifts = s.clock_ppm * 1e-6 * P * (fb + ff);
+  const double nominal = std::fabs(apparent(fb, P) - apparent(ff, P));
+  if (nominal >= 1.0 / s.window_frames + drifts + 1e-6) RC_ASSERT(apart);
+}
+
 // Every chosen set, for any camera that can meet the request: each code a square
 // wave, distinct from every other under every shift, and every pair's apparent
 // frequencies 1/W apart at every combination of clock errors within +-ppm.

@@ -118,6 +118,17 @@ RC_GTEST_PROP(CodebookWord, SelfShiftDistanceIsTheMinimumOverNonTrivialShifts, (
   RC_ASSERT(got.shift == want.shift);
 }
 
+RC_GTEST_PROP(CodebookWord, LeastPeriodIsTheSmallestShiftThatRepeats, ()) {
+  const Word w = *words();
+  const uint64_t bits = *rc::gen::element(w.bits, structured(w.bits, w.length));
+  const std::string s = text(bits, w.length);
+  uint32_t want = w.length;
+  for (uint32_t k = w.length - 1; k >= 1; --k) {
+    if (rotated(s, k) == s) want = k;
+  }
+  RC_ASSERT(least_period(bits, w.length) == want);
+}
+
 RC_GTEST_PROP(CodebookWord, StringOrderKeyOrdersLikeTheStrings, ()) {
   const Word a = *words();
   const uint64_t b = *rc::gen::arbitrary<uint64_t>() & word_mask(a.length);
@@ -150,6 +161,8 @@ TEST(CodebookWord, PeriodicWordsHaveShiftDistanceZero) {
   EXPECT_EQ(self_shift_distance(0b101010101010, 12).distance, 0u);
   EXPECT_EQ(self_shift_distance(0b101010101010, 12).shift, 2u);
   EXPECT_EQ(self_shift_distance(0b011011011011, 12).shift, 3u);
+  EXPECT_EQ(least_period(0b011011011011, 12), 3u);
+  EXPECT_EQ(least_period(0b011011011010, 12), 12u);
 }
 
 // SplitMix64's published first outputs for seed 0 (Vigna's reference code):

@@ -3,11 +3,18 @@
 // protocol responder on a pseudo-terminal; exit codes, one-line errors, JSON output.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+
+#include <fmt/format.h>
 
 #include "cli_run.hpp"
 #include "exit_codes.hpp"
 #include "pty_pair.hpp"
+#include "tetrapulse/host/board.hpp"
+#include "tetrapulse/host/config_text.hpp"
+#include "tetrapulse/host/sim_board_link.hpp"
+#include "tetrapulse/protocol/pwm_code.hpp"
 #include "tetrapulse/sim_board/sim_image.hpp"
 #include "test_images.hpp"
 #include "uart_responder.hpp"
@@ -80,6 +87,133 @@ TEST(BoardCommands, BadInputIsOneLineAndTheDocumentedExitCode) {
     EXPECT_EQ(r.err_lines(), 1u) << c.args << "\n" << r.err;
     EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
   }
+}
+
+// What a marker's LED did: mean frequency and duty over the whole periods between its first
+// and last rising edge at or after `from_ns` (true rig time).
+struct MeasuredPwm {
+  double hz = 0;
+  double duty = 0;
+  int periods = 0;
+};
+MeasuredPwm measure_pwm(const sim_board::SimBoard& board, uint8_t marker, long double from_ns) {
+  struct Edge {
+    long double at;
+    bool on;
+  };
+  std::vector<Edge> edges;
+  bool on = false;  // LEDs are dark at power-up
+  for (const sim_board::AppliedLedChange& c : board.leds().log(marker)) {
+    if ((c.duty > 0) != on && c.rig_ns >= from_ns) edges.push_back(Edge{c.rig_ns, c.duty > 0});
+    on = c.duty > 0;
+  }
+  std::vector<size_t> rises;
+  for (size_t i = 0; i < edges.size(); ++i) {
+    if (edges[i].on) rises.push_back(i);
+  }
+  MeasuredPwm m;
+  if (rises.size() < 2) return m;
+  long double lit = 0;
+  for (size_t i = rises.front(); i + 1 <= rises.back(); ++i) {
+    if (edges[i].on) lit += edges[i + 1].at - edges[i].at;
+  }
+  const long double span = edges[rises.back()].at - edges[rises.front()].at;
+  m.periods = static_cast<int>(rises.size()) - 1;
+  m.hz = static_cast<double>(m.periods / span * 1e9L);
+  m.duty = static_cast<double>(lit / span);
+  return m;
+}
+
+// `config --pwm-hz F --duty D` on a simulated board: what it prints is what pwm_code gives,
+// the board reads back that code on all four markers, and a board so configured blinks its
+// LEDs at that frequency and duty (edges from the firmware core's LED log).
+TEST(BoardCommands, ConfigPwmPlaysTheFrequencyAndDutyItPrints) {
+  CliTempDir dir("board");
+  struct Case {
+    double hz, duty;
+  };
+  for (const Case c : {Case{1000, 0.25}, Case{37.5, 0.5}, Case{30000, 0.3}, Case{0.5, 0.9}}) {
+    const std::string args = fmt::format("config --board sim:3 --pwm-hz {} --duty {}", c.hz, c.duty);
+    const auto pwm = protocol::pwm_code(static_cast<uint64_t>(std::llround(c.hz * 1000)),
+                                        static_cast<uint32_t>(std::llround(c.duty * 65536)));
+    ASSERT_TRUE(pwm.ok()) << args;
+    const std::string code = host::code_text(pwm->code);
+    const CliRun human = run_cli(dir, args);
+    ASSERT_EQ(human.exit, kExitOk) << args << "\n" << human.err;
+    EXPECT_NE(human.out.find(fmt::format("plays {:.3f} Hz duty {:.4f}", pwm->frequency_millihertz / 1000.0,
+                                         pwm->duty_q16 / 65536.0)),
+              std::string::npos)
+        << human.out;
+    EXPECT_NE(human.out.find(fmt::format("on a {} ns bit period, duty steps of 1/{}", pwm->bit_period_ns,
+                                         int(pwm->code.length))),
+              std::string::npos)
+        << human.out;
+    EXPECT_NE(human.out.find("configured and read back"), std::string::npos) << human.out;
+    const CliRun json = run_cli(dir, args + " --json");
+    ASSERT_EQ(json.exit, kExitOk) << json.err;
+    EXPECT_NE(json.out.find("\"verified\": true"), std::string::npos) << json.out;
+    EXPECT_NE(json.out.find(fmt::format("\"codes\": [\"{0}\", \"{0}\", \"{0}\", \"{0}\"]", code)), std::string::npos)
+        << json.out;
+    EXPECT_NE(json.out.find(fmt::format("\"bit_period_ns\": {}", pwm->bit_period_ns)), std::string::npos) << json.out;
+    EXPECT_NE(json.out.find("\"modulation\": \"on_off\""), std::string::npos) << json.out;
+
+    // The board plays it: a free-running simulated board with a perfect crystal, 20 periods.
+    auto sim = std::make_shared<sim_board::SimBoard>(sim_board::SimBoardOptions{});
+    sim->advance_to(1'000'000);
+    host::Board board(std::make_unique<host::SimLink>("sim:1", host::sim_board_port(sim)));
+    auto config = board.config();
+    ASSERT_TRUE(config) << config.error().what();
+    config->codes.fill(pwm->code);
+    config->bit_period_ns = pwm->bit_period_ns;
+    config->modulation = protocol::Modulation::kOnOff;
+    ASSERT_TRUE(board.configure(*config));
+    const int64_t start = sim->now() + 2 * static_cast<int64_t>(pwm->bit_period_ns) * pwm->code.length;
+    sim->advance_to(start + 21 * static_cast<int64_t>(1e12 / pwm->frequency_millihertz));
+    const double tick_ns = 1e9 / sim_board::SimBoardOptions{}.tick_hz;
+    for (uint8_t m = 0; m < 4; ++m) {
+      const MeasuredPwm got = measure_pwm(*sim, m, start);
+      ASSERT_GE(got.periods, 19) << args << " marker " << int(m);
+      const double period_ns = 1e12 / pwm->frequency_millihertz;
+      // Edges fall on the board's 84 MHz counter: each is within one tick of its time.
+      EXPECT_NEAR(got.hz, c.hz, c.hz * (2 * tick_ns / (got.periods * period_ns) + 5e-4)) << args;
+      EXPECT_NEAR(got.hz, pwm->frequency_millihertz / 1000.0, pwm->frequency_millihertz / 1000.0 * 2 * tick_ns /
+                                                                  (got.periods * period_ns) + 1e-9)
+          << args;
+      EXPECT_NEAR(got.duty, pwm->duty_q16 / 65536.0, 2 * tick_ns / period_ns + 1e-9) << args;
+      EXPECT_NEAR(got.duty, c.duty, 0.5 / pwm->code.length + 1e-9) << args << ": within half a duty step";
+    }
+  }
+}
+
+TEST(BoardCommands, ConfigPwmRefusesWhatNoBoardPlays) {
+  CliTempDir dir("board");
+  struct Case {
+    std::string args;
+    int exit;
+    std::string says;
+  };
+  for (const Case& c : {
+           Case{"--pwm-hz 0", kExitUsage, "--pwm-hz 0: outside 0.01 Hz .. 50000 Hz"},
+           Case{"--pwm-hz=-5", kExitUsage, "--pwm-hz -5: outside"},
+           Case{"--pwm-hz 50001", kExitUsage, "the highest is two bits of the shortest bit period, 10000 ns"},
+           Case{"--pwm-hz 1e9", kExitUsage, "--pwm-hz 1e+09: outside"},
+           Case{"--pwm-hz 100 --duty 0", kExitUsage, "--duty 0: must be between 0 and 1"},
+           Case{"--pwm-hz 100 --duty 1", kExitUsage, "--duty 1: must be between 0 and 1"},
+           Case{"--pwm-hz 100 --duty=-0.2", kExitUsage, "--duty -0.2: must be between 0 and 1"},
+           Case{"--pwm-hz 100 --modulation constant", kExitUsage, "--modulation constant plays no code"},
+           Case{"--duty 0.5", kExitUsage, "--duty requires --pwm-hz"},
+           Case{"--pwm-hz 100 --code 0=1101", kExitUsage, "--pwm-hz excludes --code"},
+       }) {
+    const CliRun r = run_cli(dir, "config --board sim:1 " + c.args);
+    EXPECT_EQ(r.exit, c.exit) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.err_lines(), 1u) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.out, "") << c.args;
+  }
+  // Quantisation and range are stated in --help.
+  const CliRun help = run_cli(dir, "config --help");
+  EXPECT_NE(help.out.find("duty in steps of 1/L"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("0.01 .. 50000"), std::string::npos) << help.out;
 }
 
 TEST(BoardCommands, FlashUpdatesASimulatedBoardAndRefusesImagesThatDoNotFit) {

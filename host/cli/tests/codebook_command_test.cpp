@@ -361,5 +361,120 @@ TEST(CodebookCommand, FrequencyFamilyRefusesBeyondTheCameraAndSaysTheMost) {
             kExitUsage);
 }
 
+// `codebook check` of a frequency codebook: it needs the camera, passes the codebook's own
+// codes at it, and names each code that fails and why.
+TEST(CodebookCommand, CheckOfFrequencyCodesAtTheCamera) {
+  TempDir dir;
+  const std::string out = dir.path("targets.yaml");
+  ASSERT_EQ(codebook(dir, {"--family", "frequency", "--fps", "100", "--exposure", "2ms", "--targets", "8", "--per",
+                           "target", "--free-running", "--out", out})
+                .exit,
+            kExitOk);
+  const CommandRun blind = codebook(dir, {"check", out});
+  EXPECT_EQ(blind.exit, kExitUsage);
+  EXPECT_EQ(lines(blind.err), 1u) << blind.err;
+  EXPECT_NE(blind.err.find("8 codes (one per target) are square waves (frequency codes"), std::string::npos)
+      << blind.err;
+  EXPECT_NE(blind.err.find("give --fps and --exposure"), std::string::npos) << blind.err;
+  EXPECT_EQ(codebook(dir, {"check", out, "--fps", "100"}).exit, kExitUsage);
+
+  const CommandRun ok = codebook(dir, {"check", out, "--fps", "100", "--exposure", "2ms"});
+  EXPECT_EQ(ok.exit, kExitOk) << ok.err;
+  EXPECT_EQ(lines(ok.out), 1u) << ok.out;
+  EXPECT_NE(ok.out.find("8 codes (one per target) pass: 100 fps, 2 ms exposure"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("closest pair"), std::string::npos) << ok.out;
+
+  auto file = read_targets_yaml(out);
+  ASSERT_TRUE(file);
+  const int64_t T = file->timebase.bit_period_ns;
+  // targets[1] plays targets[0]'s square wave one bit late: the same frequency. targets[2]
+  // repeats once a frame (k bits of P / k): it looks constant.
+  const Code first = *file->targets[0].markers[0].code;
+  const std::string text = first.str();
+  const Code late = *Code::parse(text.substr(text.size() - 1) + text.substr(0, text.size() - 1), nullptr);
+  const int64_t k = (10'000'000 + T / 2) / T;
+  ASSERT_GE(k, 2);
+  ASSERT_LE(k, 64);
+  const Code constant = *Code::parse(std::string(static_cast<size_t>(k / 2), '1') +
+                                         std::string(static_cast<size_t>(k - k / 2), '0'),
+                                     nullptr);
+  for (Marker& m : file->targets[1].markers) m.code = late;
+  for (Marker& m : file->targets[2].markers) m.code = constant;
+  ASSERT_TRUE(write_text_file(out, format_targets_yaml(*file)));
+  const CommandRun bad = codebook(dir, {"check", out, "--fps", "100", "--exposure", "2ms"});
+  EXPECT_EQ(bad.exit, kExitCheckFailed);
+  EXPECT_NE(bad.err.find("targets[2] (id 3) '" + constant.str() + "': seen at 0.0"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("it looks constant"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("targets[0] (id 1) '" + text + "' seen at"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("and targets[1] (id 2) '" + late.str() + "' seen at"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("too close to tell apart"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("2 faults in 8 codes (one per target)"), std::string::npos) << bad.err;
+  EXPECT_EQ(lines(bad.err), 3u) << bad.err;
+  // A camera option the camera cannot have is a usage error.
+  EXPECT_EQ(codebook(dir, {"check", out, "--fps", "100", "--exposure", "11ms"}).exit, kExitUsage);
+}
+
+// A mixed file: binary words by the binary rules, square waves by the frequency rules,
+// and no binary word seen at the apparent frequency of a square wave.
+TEST(CodebookCommand, CheckOfAMixedFileChecksEachFamilyAndBetweenThem) {
+  TempDir dir;
+  const std::string out = dir.path("targets.yaml");
+  ASSERT_EQ(codebook(dir, {"--targets", "4", "--per", "target", "--out", out}).exit, kExitOk);
+  auto file = read_targets_yaml(out);
+  ASSERT_TRUE(file);
+  // 100 fps, T = 2.5 ms. "1110000": 17.5 ms, 0.429 cycle per frame; "111100000000": 30 ms,
+  // 1/3. 14-bit words: 35 ms, 0.286, at least 0.048 from both (> 1/24 + drifts).
+  file->timebase.bit_period_ns = 2'500'000;
+  const char* codes[] = {"1110000", "111100000000", "11010011000101", "10011101001100"};
+  auto set = [&](size_t target, const std::string& code) {
+    for (Marker& m : file->targets[target].markers) m.code = *Code::parse(code, nullptr);
+  };
+  for (size_t i = 0; i < 4; ++i) set(i, codes[i]);
+  ASSERT_TRUE(write_text_file(out, format_targets_yaml(*file)));
+  const std::vector<std::string> camera = {"--fps", "100", "--exposure", "1ms", "--weights", "any",
+                                           "--max-zero-run", "none"};
+  auto check = [&]() {
+    std::vector<std::string> args = {"check", out};
+    args.insert(args.end(), camera.begin(), camera.end());
+    return codebook(dir, args);
+  };
+  const CommandRun ok = check();
+  EXPECT_EQ(ok.exit, kExitOk) << ok.err;
+  EXPECT_NE(ok.out.find("2 binary codes (one per target) pass: synchronized, 14 bits"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("2 frequency codes (one per target) pass: 100 fps"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("the 2 binary codes stay apart from them"), std::string::npos) << ok.out;
+  EXPECT_EQ(lines(ok.out), 2u) << ok.out;
+
+  // "11100001110000" is "1110000" twice: not a square wave, so a binary word, but the
+  // camera sees it exactly where it sees targets[0].
+  set(3, "11100001110000");
+  ASSERT_TRUE(write_text_file(out, format_targets_yaml(*file)));
+  const CommandRun twin = check();
+  EXPECT_EQ(twin.exit, kExitCheckFailed);
+  EXPECT_NE(twin.err.find("binary targets[3] (id 4) '11100001110000' repeats every 7 bits"), std::string::npos)
+      << twin.err;
+  EXPECT_NE(twin.err.find("and frequency targets[0] (id 1) '1110000' at 0.4286"), std::string::npos) << twin.err;
+  EXPECT_NE(twin.err.find("a reader may take one for the other"), std::string::npos) << twin.err;
+  EXPECT_NE(twin.err.find("1 faults in 2 frequency codes (one per target) and beside the binary codes"),
+            std::string::npos)
+      << twin.err;
+  EXPECT_NE(twin.out.find("2 binary codes (one per target) pass"), std::string::npos) << twin.out;
+
+  // Each family by its own rules: binary words of two lengths, and a square wave too close to another.
+  set(3, "1001110100110");
+  set(1, "111111000000000");  // 15 bits: 37.5 ms, 0.267 cycle per frame
+  set(0, "1111000000000");    // 13 bits: 32.5 ms, 0.308: 0.041 from it, less than 1/24
+  ASSERT_TRUE(write_text_file(out, format_targets_yaml(*file)));
+  const CommandRun both = check();
+  EXPECT_EQ(both.exit, kExitCheckFailed);
+  EXPECT_NE(both.err.find("targets[3] (id 4): 13 bits, but other binary codes have 14"), std::string::npos)
+      << both.err;
+  EXPECT_NE(both.err.find("targets[0] (id 1) '1111000000000' seen at 0.3077"), std::string::npos) << both.err;
+  EXPECT_NE(both.err.find("too close to tell apart"), std::string::npos) << both.err;
+  // Without the camera the frequency half cannot be checked, and says so.
+  const CommandRun blind = codebook(dir, {"check", out, "--weights", "any", "--max-zero-run", "none"});
+  EXPECT_NE(blind.err.find("2 frequency codes (one per target) are square waves"), std::string::npos) << blind.err;
+}
+
 }  // namespace
 }  // namespace tetrapulse::cli

@@ -100,4 +100,18 @@ struct FrequencyReport {
 FrequencyReport check_frequency_codes(const FrequencySpec& spec, const uint64_t* words, const uint8_t* lengths,
                                       size_t n);
 
+// Binary codes beside frequency codes in one rig (one time base, bit period T). A binary
+// word of least period p bits repeats every p T, so the camera sees it at the apparent
+// frequency nu(p T) of a square wave of p bits. It stays apart from frequency code c when
+//   |nu(p T) - nu(c)| >= m + drift(p T) + drift(c),
+// the rule between two frequency codes: a reader that separates frequency codes by their
+// apparent frequency never takes the binary code for one (a word such as "110110" is the
+// square wave "110" to the camera and fails here). Harmonics are not compared.
+// kTooClose: `code` indexes the binary words, `other` the frequency words; kBadSpec as
+// check_frequency_codes. Codes are words (bit i = character i) of the given lengths.
+FrequencyReport check_binary_beside_frequency(const FrequencySpec& spec, const uint64_t* binary_words,
+                                              const uint8_t* binary_lengths, size_t n_binary,
+                                              const uint64_t* frequency_words, const uint8_t* frequency_lengths,
+                                              size_t n_frequency);
+
 }  // namespace tetrapulse::protocol

@@ -47,6 +47,9 @@ ShiftDistance cyclic_distance(uint64_t a, uint64_t b, uint32_t length);
 // (cyclic_distance(a, b).distance < d, stopping at the first such shift).
 bool cyclically_closer_than(uint64_t a, uint64_t b, uint32_t length, uint32_t d);
 
+// The least period of w: the smallest p >= 1 with rotate_word(w, p, L) == w (p divides L).
+uint32_t least_period(uint64_t w, uint32_t length);
+
 // Shift distance  min_{s=1..L-1} H(w, rotate_word(w, s)):  how well w's own
 // phase can be told apart. 0 for a periodic word; {L, 0} when L = 1 (no
 // non-trivial shift exists).
