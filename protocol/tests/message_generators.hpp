@@ -1,8 +1,11 @@
 #pragma once
-// rapidcheck generators of valid protocol messages: every field anywhere in its range.
+// rapidcheck generators of valid protocol messages: every field anywhere in its range;
+// and the message types as GoogleTest typed-test parameters.
+#include <gtest/gtest.h>
 #include <rapidcheck.h>
 
 #include <cstdint>
+#include <string>
 #include <variant>
 
 #include "tetrapulse/protocol/limits.hpp"
@@ -19,6 +22,23 @@ rc::Gen<E> enum_up_to(E last) {
 }
 
 inline rc::Gen<uint8_t> node_id_gen() { return rc::gen::inRange<uint8_t>(1, 255); }
+
+// Every Body alternative, for TYPED_TEST_SUITE(Suite, BodyTypes, BodyTypeName).
+template <class V>
+struct TypesOf;
+template <class... Ts>
+struct TypesOf<std::variant<Ts...>> {
+  using type = ::testing::Types<Ts...>;
+};
+using BodyTypes = TypesOf<Body>::type;
+
+// Typed tests named after the message ("identify"), not a number.
+struct BodyTypeName {
+  template <class T>
+  static std::string GetName(int) {
+    return message_name(T::kType);
+  }
+};
 
 // Body alternative I as a Body.
 template <size_t... I>
