@@ -1,6 +1,6 @@
-// libFuzzer: decode() on any bytes never crashes or reads outside the input; whatever
-// decodes is valid, re-encodes to exactly the input (the encoding is canonical) and
-// formats within bounds.
+// libFuzzer: decode() on any bytes never crashes or reads outside the input, and a failure
+// stops inside the input (ErrorResponse.detail); whatever decodes is valid, re-encodes to
+// exactly the input (the encoding is canonical) and formats within bounds.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -11,9 +11,10 @@
 using namespace tetrapulse::protocol;
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const auto decoded = decode(ByteView{data, size});
+  size_t stopped_at = size + 1;
+  const auto decoded = decode(ByteView{data, size}, &stopped_at);
   if (!decoded.ok()) {
-    if (decoded.error() == Error::kNone) std::abort();
+    if (decoded.error() == Error::kNone || stopped_at > size) std::abort();
     return 0;
   }
   if (!validate(*decoded).ok()) std::abort();

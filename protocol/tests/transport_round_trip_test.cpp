@@ -68,6 +68,20 @@ Delivered over_can(const Bytes& m, const CanRoute& route) {
   return fail("CAN: no frames");
 }
 
+// Packets into a receiver that must say nothing until the last one completes the message.
+template <class Receiver>
+Delivered through_packets(Receiver& rx, const std::vector<Bytes>& packets, const std::string& what) {
+  for (size_t i = 0; i < packets.size(); ++i) {
+    const ReceiveEvent e = rx.push_packet(view(packets[i]));
+    const bool last = i + 1 == packets.size();
+    if (e.kind != (last ? ReceiveKind::kMessage : ReceiveKind::kNothing)) {
+      return fail(what + " packet " + std::to_string(i) + ": " + error_name(e.error));
+    }
+    if (last) return bytes_of(e.message);
+  }
+  return fail(what + ": no packets");
+}
+
 Delivered over_usb_bulk(const Bytes& m) {
   Bytes transfer(kUsbBulkMaxTransfer);
   const Result<size_t> n = encode_usb_bulk_frame(view(m), transfer.data(), transfer.size());
@@ -76,33 +90,15 @@ Delivered over_usb_bulk(const Bytes& m) {
   const auto packets = usb_packets(transfer);
   if (packets.size() != usb_bulk_packet_count(transfer.size())) return fail("USB bulk: packet count");
   UsbBulkFrameReceiver rx;
-  for (size_t i = 0; i < packets.size(); ++i) {
-    const ReceiveEvent e = rx.push_packet(view(packets[i]));
-    const bool last = i + 1 == packets.size();
-    if (e.kind != (last ? ReceiveKind::kMessage : ReceiveKind::kNothing)) {
-      return fail("USB bulk packet " + std::to_string(i) + ": " + error_name(e.error));
-    }
-    if (last) return bytes_of(e.message);
-  }
-  return fail("USB bulk: no packets");
+  return through_packets(rx, packets, "USB bulk");
 }
 
 // Host to device: MESSAGE_OUT with wLength = the message size, the data stage in packets.
 Delivered over_usb_message_out(const Bytes& m) {
-  const auto w_length = static_cast<uint16_t>(m.size());
   UsbMessageOutReceiver rx;
-  const Status setup = rx.begin(w_length);
+  const Status setup = rx.begin(static_cast<uint16_t>(m.size()));
   if (!setup) return fail(std::string("MESSAGE_OUT setup: ") + error_name(setup.error()));
-  const auto packets = usb_packets(m, false);  // exactly wLength bytes: no ZLP
-  for (size_t i = 0; i < packets.size(); ++i) {
-    const ReceiveEvent e = rx.push_packet(view(packets[i]));
-    const bool last = i + 1 == packets.size();
-    if (e.kind != (last ? ReceiveKind::kMessage : ReceiveKind::kNothing)) {
-      return fail("MESSAGE_OUT packet " + std::to_string(i) + ": " + error_name(e.error));
-    }
-    if (last) return bytes_of(e.message);
-  }
-  return fail("MESSAGE_OUT: no packets");
+  return through_packets(rx, usb_packets(m, false), "MESSAGE_OUT");  // exactly wLength bytes: no ZLP
 }
 
 // Device to host: MESSAGE_IN with wLength = kMaxMessageSize; the host takes packets until

@@ -125,6 +125,18 @@ TEST(TransportVectors, UsbDescriptors) {
   }
 }
 
+// `value` encodes to `bytes` and `bytes` decode to `value`.
+template <class T, class Encode, class Decode>
+void expect_codec(const T& value, const Bytes& bytes, Encode encode, Decode decode) {
+  uint8_t out[64];
+  const Result<size_t> n = encode(value, out, sizeof(out));
+  ASSERT_TRUE(n.ok()) << error_name(n.error());
+  EXPECT_EQ(Bytes(out, out + *n), bytes);
+  const Result<T> back = decode(view(bytes));
+  ASSERT_TRUE(back.ok()) << error_name(back.error());
+  EXPECT_EQ(*back, value);
+}
+
 TEST(TransportVectors, DfuStatus) {
   const auto files = read_all("usb", "dfu_status_");
   ASSERT_GE(files.size(), 4u);
@@ -133,14 +145,7 @@ TEST(TransportVectors, DfuStatus) {
     const auto field = [&](const char* key) { return record_number(f, "status", key); };
     const DfuStatus s{static_cast<DfuStatusCode>(field("status")), static_cast<uint32_t>(field("poll_timeout_ms")),
                       static_cast<DfuState>(field("state")), static_cast<uint8_t>(field("string_index"))};
-    const Bytes bytes = record_bytes(f, "bytes");
-    uint8_t out[kDfuStatusSize];
-    const Result<size_t> n = encode_dfu_status(s, out, sizeof(out));
-    ASSERT_TRUE(n.ok());
-    EXPECT_EQ(Bytes(out, out + *n), bytes);
-    const Result<DfuStatus> back = decode_dfu_status(view(bytes));
-    ASSERT_TRUE(back.ok());
-    EXPECT_EQ(*back, s);
+    expect_codec(s, record_bytes(f, "bytes"), encode_dfu_status, decode_dfu_status);
   }
 }
 
@@ -149,17 +154,10 @@ TEST(TransportVectors, UsbProtocolInfo) {
   ASSERT_EQ(files.size(), 1u);
   const HexFile& f = files[0];
   const auto field = [&](const char* key) { return record_number(f, "info", key); };
-  const UsbProtocolInfo expected{static_cast<uint8_t>(field("protocol_version")),
-                                 static_cast<uint16_t>(field("max_message_size")),
-                                 static_cast<uint32_t>(field("capabilities"))};
-  const Bytes bytes = record_bytes(f, "bytes");
-  uint8_t out[kUsbProtocolInfoSize];
-  const Result<size_t> n = encode_usb_protocol_info(expected, out, sizeof(out));
-  ASSERT_TRUE(n.ok());
-  EXPECT_EQ(Bytes(out, out + *n), bytes);
-  const Result<UsbProtocolInfo> back = decode_usb_protocol_info(view(bytes));
-  ASSERT_TRUE(back.ok());
-  EXPECT_EQ(*back, expected);
+  const UsbProtocolInfo info{static_cast<uint8_t>(field("protocol_version")),
+                             static_cast<uint16_t>(field("max_message_size")),
+                             static_cast<uint32_t>(field("capabilities"))};
+  expect_codec(info, record_bytes(f, "bytes"), encode_usb_protocol_info, decode_usb_protocol_info);
 }
 
 // A CAN vector that lacks a record or holds an impossible value says which and where.

@@ -1,14 +1,17 @@
 // One sweep over every golden vector of every kind (messages, image, can, usb, uart): each
-// truncation and each single-bit flip is decoded, and every case counts as decoded to a
+// truncation and each single-bit flip is decoded (and, as a property, random damage to
+// several bytes at once), and every case counts as decoded to a
 // valid result, rejected (a typed error, or nothing delivered), a violation (a decoder broke
 // its contract: an error without a name, a result that is not valid or not canonical, a
 // stream that did not recover for the intact frame after the damage), or a crash. Each
 // vector's cases run in a child process, so a crash is counted instead of ending the test;
 // under the asan preset an out-of-bounds read is such a crash.
 #include <gtest/gtest.h>
+#include <rapidcheck.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <functional>
@@ -34,13 +37,16 @@ using Bytes = std::vector<uint8_t>;
 
 enum Outcome : char { kValid = 'v', kRejected = 'r', kViolation = 'x' };
 
-// A golden vector and its corruptions: case i of `cases`, run and described.
+// A golden vector and its corruptions: case i of `cases`, run and described; and the vector
+// as flat bytes (`bytes`) with the outcome of any corruption of them (`decode`).
 struct Subject {
   std::string kind;
   std::string origin;
   size_t cases = 0;
   std::function<Outcome(size_t)> run;
   std::function<std::string(size_t)> describe;
+  Bytes bytes;
+  std::function<Outcome(const Bytes&)> decode;
 };
 
 // A copy of exactly the input's size, so ASan sees any read past its end.
@@ -60,8 +66,10 @@ Bytes bytes_of(ByteView v) { return Bytes(v.begin(), v.end()); }
 bool message_sized(ByteView m) { return m.size >= 3 && m.size <= kMaxMessageSize; }
 
 // Byte vectors: cases 0..n-1 cut them to that length, cases n..9n-1 flip one bit each.
+// `damaged` judges damage beyond one flip or cut, when it differs from `decoder`.
 Subject byte_subject(const std::string& kind, const std::string& origin, const Bytes& bytes,
-                     std::function<Outcome(const Bytes&)> decoder) {
+                     std::function<Outcome(const Bytes&)> decoder,
+                     std::function<Outcome(const Bytes&)> damaged = nullptr) {
   const size_t n = bytes.size();
   const auto corrupt = [bytes, n](size_t i) {
     if (i < n) return Bytes(bytes.begin(), bytes.begin() + static_cast<long>(i));
@@ -69,10 +77,15 @@ Subject byte_subject(const std::string& kind, const std::string& origin, const B
     flipped[(i - n) / 8] ^= static_cast<uint8_t>(1u << ((i - n) % 8));
     return flipped;
   };
-  return Subject{kind, origin, 9 * n, [corrupt, decoder](size_t i) { return decoder(corrupt(i)); },
+  return Subject{kind,
+                 origin,
+                 9 * n,
+                 [corrupt, decoder](size_t i) { return decoder(corrupt(i)); },
                  [n](size_t i) {
                    return i < n ? "cut to " + std::to_string(i) + " bytes" : "bit " + std::to_string(i - n) + " flipped";
-                 }};
+                 },
+                 bytes,
+                 damaged ? damaged : decoder};
 }
 
 Outcome message_outcome(const Bytes& b) {
@@ -113,9 +126,10 @@ Outcome protocol_info_outcome(const Bytes& b) {
 }
 
 // The damaged frame, a delimiter (the flip may have removed its own), then the intact frame:
-// a message from the damaged part must be the original (the CRC catches every flip), and
-// the intact frame must come through.
-Outcome uart_outcome(const Bytes& damaged, const Bytes& frame, const Bytes& original) {
+// a message from the damaged part must be the original when `one_flip` (the CRC catches
+// every single flip; damage to many bytes passes it with probability 2^-16), and the intact
+// frame must come through.
+Outcome uart_outcome(const Bytes& damaged, const Bytes& frame, const Bytes& original, bool one_flip) {
   Bytes stream = damaged;
   stream.push_back(kUartDelimiter);
   const size_t damaged_end = stream.size();
@@ -134,7 +148,7 @@ Outcome uart_outcome(const Bytes& damaged, const Bytes& frame, const Bytes& orig
     if (!message_sized(e.message)) return kViolation;
     last = bytes_of(e.message);
     if (at > damaged_end) continue;
-    if (last != original) return kViolation;
+    if (one_flip && last != original) return kViolation;
     outcome = kValid;
   }
   return last == original ? outcome : kViolation;
@@ -211,16 +225,47 @@ Outcome can_outcome(const std::vector<CanFrame>& damaged, const CanTransferVecto
   return recovered == v.message ? outcome : kViolation;
 }
 
+// Frames as flat bytes, each its identifier (u32 LE) then its data, and back: flat bytes cut
+// short give fewer frames, the last one shorter.
+Bytes flatten(const std::vector<CanFrame>& frames) {
+  Bytes flat;
+  for (const CanFrame& f : frames) {
+    for (int i = 0; i < 4; ++i) flat.push_back(static_cast<uint8_t>(f.id >> (8 * i)));
+    flat.insert(flat.end(), f.data, f.data + f.size);
+  }
+  return flat;
+}
+
+std::vector<CanFrame> unflatten(const Bytes& flat, const std::vector<CanFrame>& like) {
+  std::vector<CanFrame> frames;
+  size_t at = 0;
+  for (const CanFrame& l : like) {
+    if (flat.size() - at < 4) break;
+    CanFrame f;
+    for (size_t i = 0; i < 4; ++i) f.id |= static_cast<uint32_t>(flat[at + i]) << (8 * i);
+    at += 4;
+    f.size = static_cast<uint8_t>(std::min<size_t>(l.size, flat.size() - at));
+    std::copy(flat.begin() + static_cast<long>(at), flat.begin() + static_cast<long>(at + f.size), f.data);
+    at += f.size;
+    frames.push_back(f);
+  }
+  return frames;
+}
+
 Subject can_subject(const CanTransferVector& v) {
   const auto cases = std::make_shared<std::vector<CanCase>>(can_cases(v.frames));
   static const char* const kWhat[] = {"stream cut before frame ", "cut to ", "identifier bit ", "data bit "};
-  return Subject{"can", v.path, cases->size(),
+  return Subject{"can",
+                 v.path,
+                 cases->size(),
                  [cases, v](size_t i) { return can_outcome(corrupt(v.frames, (*cases)[i]), v); },
                  [cases](size_t i) {
                    const CanCase& c = (*cases)[i];
                    const std::string param = c.what == CanCase::kStreamCut ? "" : std::to_string(c.param) + " of frame ";
                    return kWhat[c.what] + param + std::to_string(c.frame);
-                 }};
+                 },
+                 flatten(v.frames),
+                 [v](const Bytes& flat) { return can_outcome(unflatten(flat, v.frames), v); }};
 }
 
 // Every vector file, as subjects; a file that does not read fails the test.
@@ -246,8 +291,9 @@ std::vector<Subject> subjects() {
   }
   for (const HexFile& f : files("uart")) {
     const Bytes frame = record_bytes(f, "frame"), message = record_bytes(f, "message");
-    out.push_back(byte_subject("uart", f.path, frame,
-                               [frame, message](const Bytes& d) { return uart_outcome(d, frame, message); }));
+    out.push_back(byte_subject(
+        "uart", f.path, frame, [frame, message](const Bytes& d) { return uart_outcome(d, frame, message, true); },
+        [frame, message](const Bytes& d) { return uart_outcome(d, frame, message, false); }));
   }
   for (const HexFile& f : files("usb", "bulk_")) {
     const Bytes transfer = record_bytes(f, "transfer"), message = record_bytes(f, "message");
@@ -349,6 +395,37 @@ TEST(VectorCorruption, EveryTruncationAndBitFlipOfEveryVectorDecodesOrIsRejected
   for (size_t i = 0; i < notes.size() && i < 20; ++i) ADD_FAILURE() << notes[i];
   // Flips in free-valued fields (times, counters, chunk data) decode to other valid messages.
   EXPECT_GT(by_kind["messages"].valid, 0u);
+}
+
+// Several bytes of a vector changed at once (each XOR a non-zero mask), then maybe cut:
+// damage a single flip does not model, such as a burst on the wire.
+Bytes random_damage(Bytes bytes) {
+  const size_t n = bytes.size();
+  const auto count = *rc::gen::inRange<size_t>(2, 17);
+  const auto at = *rc::gen::container<std::vector<size_t>>(count, rc::gen::inRange<size_t>(0, n));
+  const auto masks = *rc::gen::container<std::vector<int>>(count, rc::gen::inRange<int>(1, 256));
+  for (size_t i = 0; i < count; ++i) bytes[at[i]] ^= static_cast<uint8_t>(masks[i]);
+  if (*rc::gen::weightedElement<bool>({{3, false}, {1, true}})) bytes.resize(*rc::gen::inRange<size_t>(0, n + 1));
+  return bytes;
+}
+
+TEST(VectorCorruption, RandomMultiByteDamageOfEveryVectorDecodesOrIsRejected) {
+  std::map<std::string, size_t> checked;
+  size_t total = 0;
+  for (const Subject& s : subjects()) {
+    if (s.bytes.empty()) continue;  // the empty record: nothing to damage
+    const bool ok = rc::check(s.origin, [&] {
+      const Bytes damaged = random_damage(s.bytes);
+      ++checked[s.kind];
+      ++total;
+      RC_ASSERT(s.decode(damaged) != kViolation);
+    });
+    EXPECT_TRUE(ok) << s.origin;
+  }
+  std::printf("random multi-byte damage checked:");
+  for (const auto& [kind, n] : checked) std::printf(" %s %zu,", kind.c_str(), n);
+  std::printf(" total %zu\n", total);
+  EXPECT_EQ(checked.size(), 5u);
 }
 
 }  // namespace
