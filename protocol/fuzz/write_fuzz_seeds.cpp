@@ -1,7 +1,8 @@
 // Writes the golden vectors (protocol/vectors, SPEC.md §1.1) as binary seed inputs, one
 // folder per fuzz target, in the input form each target reads (fuzz_input.hpp):
 //   protocol_write_fuzz_seeds <output dir>
-// creates <output dir>/{messages,image,can,uart,usb_bulk,dfu_status}/<file>.<record>.bin.
+// creates <output dir>/{messages,config,image,can,uart,cobs,usb_bulk,usb_message_out,dfu_status,
+// protocol_info}/<file>.<record>.bin.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,8 @@
 #include <vector>
 
 #include "fuzz_input.hpp"
+#include "tetrapulse/protocol/config.hpp"
+#include "tetrapulse/protocol/message.hpp"
 #include "transport_testing.hpp"
 #include "transport_vectors.hpp"
 
@@ -68,6 +71,27 @@ void write_records(SeedWriter& w, const std::string& corpus, const std::string& 
   }
 }
 
+// Each golden message as a MESSAGE_OUT control transfer, and the Config of SetConfig and
+// ConfigReport on its own.
+void write_message_forms(SeedWriter& w) {
+  namespace tp = tetrapulse::protocol;
+  for (const HexFile& f : w.read("messages")) {
+    for (const auto& r : f.records) {
+      const std::string name = f.stem + "." + r.name;
+      Bytes transfer;
+      tp::fuzz::append_usb_setup(static_cast<uint16_t>(r.bytes.size()), &transfer);
+      for (const Bytes& p : tp::testing::usb_packets(r.bytes, false)) {
+        tp::fuzz::append_usb_packet(p.data(), p.size(), &transfer);
+      }
+      w.write("usb_message_out", name, transfer);
+      const bool has_config = r.bytes.size() == tp::kMessageHeaderSize + tp::kConfigSize &&
+                              (r.bytes[1] == static_cast<uint8_t>(tp::MessageType::kSetConfig) ||
+                               r.bytes[1] == static_cast<uint8_t>(tp::MessageType::kConfigReport));
+      if (has_config) w.write("config", name, Bytes(r.bytes.begin() + tp::kMessageHeaderSize, r.bytes.end()));
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -79,6 +103,7 @@ int main(int argc, char** argv) {
   SeedWriter w(argv[1]);
   write_records(w, "messages", "messages");
   write_records(w, "messages", "messages/malformed");
+  write_message_forms(w);
   write_records(w, "image", "image");
   write_records(w, "image", "image/malformed");
   for (const HexFile& f : w.read("can")) {
@@ -96,6 +121,7 @@ int main(int argc, char** argv) {
     const Bytes frame = w.record(f, "frame");
     seed.insert(seed.end(), frame.begin(), frame.end());
     w.write("uart", f.stem, seed);
+    if (!frame.empty()) w.write("cobs", f.stem, Bytes(frame.begin(), frame.end() - 1));  // without the delimiter
   }
   for (const HexFile& f : w.read("usb", "bulk_")) {
     // As packets on the bus: 64-byte packets, then the short one (maybe a ZLP).
@@ -106,6 +132,6 @@ int main(int argc, char** argv) {
     w.write("usb_bulk", "whole_" + f.stem, t);
   }
   for (const HexFile& f : w.read("usb", "dfu_status_")) w.write("dfu_status", f.stem, w.record(f, "bytes"));
-  for (const HexFile& f : w.read("usb", "protocol_info")) w.write("dfu_status", f.stem, w.record(f, "bytes"));
+  for (const HexFile& f : w.read("usb", "protocol_info")) w.write("protocol_info", f.stem, w.record(f, "bytes"));
   return w.ok() ? 0 : 1;
 }
