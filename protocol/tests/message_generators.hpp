@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "tetrapulse/protocol/limits.hpp"
 #include "tetrapulse/protocol/message.hpp"
@@ -45,6 +46,23 @@ template <size_t... I>
 rc::Gen<Body> body_gen(std::index_sequence<I...>) {
   return rc::gen::oneOf(rc::gen::cast<Body>(rc::gen::arbitrary<std::variant_alternative_t<I, Body>>())...);
 }
+
+// Random bodies of type `t` (a Body alternative's kType); of the first alternative otherwise.
+template <size_t I = 0>
+rc::Gen<Body> body_of_type(MessageType t) {
+  using T = std::variant_alternative_t<I, Body>;
+  if constexpr (I + 1 < std::variant_size_v<Body>) {
+    if (T::kType != t) return body_of_type<I + 1>(t);
+  }
+  return rc::gen::cast<Body>(rc::gen::arbitrary<T>());
+}
+
+// The type of every Body alternative, in Body's order.
+template <size_t... I>
+std::vector<MessageType> body_types(std::index_sequence<I...>) {
+  return {std::variant_alternative_t<I, Body>::kType...};
+}
+inline std::vector<MessageType> body_types() { return body_types(std::make_index_sequence<std::variant_size_v<Body>>()); }
 
 }  // namespace tetrapulse::protocol::testing
 

@@ -1,13 +1,17 @@
-// Round trips for every message on every transport: each golden message (vectors/messages)
-// and random messages of every type go through CAN (sender -> receiver, the identifier's
-// type field checked), USB bulk framing, USB control (MESSAGE_OUT and MESSAGE_IN data
-// stages) and UART framing, and decode back to an equal message.
+// Round trips for every message on every transport, one parameterised test: each golden
+// message (vectors/messages) and random messages of every type go through CAN (sender ->
+// receiver, the identifier's fields and the receiver's filters checked), USB bulk framing,
+// USB control (MESSAGE_OUT and MESSAGE_IN data stages) and UART framing, and decode back to
+// an equal message.
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
+#include <tl/expected.hpp>
 
+#include <ostream>
 #include <string>
 #include <vector>
 
+#include "golden_messages.hpp"
 #include "message_generators.hpp"
 #include "message_testing.hpp"
 #include "tetrapulse/protocol/can_transfer_receiver.hpp"
@@ -16,7 +20,6 @@
 #include "tetrapulse/protocol/usb_bulk_frame.hpp"
 #include "tetrapulse/protocol/usb_control.hpp"
 #include "transport_testing.hpp"
-#include "vector_cases.hpp"
 
 namespace tetrapulse::protocol::testing {
 namespace {
@@ -127,60 +130,97 @@ Delivered over_uart(const Bytes& m) {
   return bytes_of(e.message);
 }
 
-// Sends the encoding of `m` over every transport; an empty result means every one gave
-// back a message equal to `m`, else it names the transport and what went wrong.
-std::string round_trip_everywhere(const Message& m, const CanRoute& route) {
+enum class Transport { kCan, kUsbBulk, kUsbMessageOut, kUsbMessageIn, kUart };
+
+const char* transport_name(Transport t) {
+  switch (t) {
+    case Transport::kCan: return "can";
+    case Transport::kUsbBulk: return "usb_bulk";
+    case Transport::kUsbMessageOut: return "usb_message_out";
+    case Transport::kUsbMessageIn: return "usb_message_in";
+    case Transport::kUart: return "uart";
+  }
+  return "?";
+}
+
+// Sends the encoding of `m` over `transport`; an empty result means it delivered bytes that
+// decode to a message equal to `m`, else it says what went wrong.
+std::string round_trip(const Message& m, Transport transport, const CanRoute& route) {
   const Bytes bytes = encode_bytes(m);
   if (bytes.empty()) return "does not encode";
-  const std::pair<const char*, Delivered> results[] = {
-      {"can", over_can(bytes, route)},
-      {"usb bulk", over_usb_bulk(bytes)},
-      {"usb MESSAGE_OUT", over_usb_message_out(bytes)},
-      {"usb MESSAGE_IN", over_usb_message_in(bytes)},
-      {"uart", over_uart(bytes)},
-  };
-  for (const auto& [transport, delivered] : results) {
-    if (!delivered) return std::string(transport) + ": " + delivered.error();
-    const auto decoded = decode(view(*delivered));
-    if (!decoded) return std::string(transport) + ": delivered bytes decode to " + error_name(decoded.error());
-    if (text(*decoded) != text(m)) return std::string(transport) + ": delivered " + text(*decoded);
+  Delivered delivered = fail("no transport");
+  switch (transport) {
+    case Transport::kCan: delivered = over_can(bytes, route); break;
+    case Transport::kUsbBulk: delivered = over_usb_bulk(bytes); break;
+    case Transport::kUsbMessageOut: delivered = over_usb_message_out(bytes); break;
+    case Transport::kUsbMessageIn: delivered = over_usb_message_in(bytes); break;
+    case Transport::kUart: delivered = over_uart(bytes); break;
   }
+  if (!delivered) return delivered.error();
+  const auto decoded = decode(view(*delivered));
+  if (!decoded) return std::string("delivered bytes decode to ") + error_name(decoded.error());
+  if (text(*decoded) != text(m)) return "delivered " + text(*decoded);
   return {};
 }
 
-class GoldenMessageOnEveryTransport : public ::testing::TestWithParam<VectorCase> {};
-
-TEST_P(GoldenMessageOnEveryTransport, ArrivesEqual) {
-  const VectorCase& c = GetParam();
-  ASSERT_EQ(c.load_error, "");
-  const auto golden = decode(view(c.record.bytes));
-  ASSERT_TRUE(golden.ok()) << c.record.origin << ": " << error_name(golden.error());
-  // Requests from the host to board 3, everything else from board 3 to the host; time sync broadcast.
-  CanRoute route{kCanPriorityRequest, kCanHostNode, 3};
-  if (!is_request(golden->type())) route = CanRoute{kCanPriorityResponse, 3, kCanHostNode};
-  if (golden->get<Sync>() != nullptr || golden->get<FollowUp>() != nullptr) {
-    route = CanRoute{kCanPrioritySync, kCanHostNode, kCanBroadcastNode};
-  }
-  EXPECT_EQ(round_trip_everywhere(*golden, route), "") << c.record.origin;
+// The CAN route of a message between the host and board 3: requests to the board, responses
+// from it, time sync broadcast.
+CanRoute usual_route(const Message& m) {
+  if (is_time_sync(m.type())) return CanRoute{kCanPrioritySync, kCanHostNode, kCanBroadcastNode};
+  if (is_request(m.type())) return CanRoute{kCanPriorityRequest, kCanHostNode, 3};
+  return CanRoute{kCanPriorityResponse, 3, kCanHostNode};
 }
 
-INSTANTIATE_TEST_SUITE_P(Vectors, GoldenMessageOnEveryTransport, ::testing::ValuesIn(vector_cases("messages")),
-                         case_name);
+// One case per (transport, message type): every golden message of the type (vectors/messages)
+// and random ones (every field anywhere in its range, any CAN route) arrive equal.
+struct RoundTripCase {
+  Transport transport;
+  MessageType type;
+};
 
-template <class T>
-class RandomMessageOnEveryTransport : public ::testing::Test {};
-TYPED_TEST_SUITE(RandomMessageOnEveryTransport, BodyTypes, BodyTypeName);
+void PrintTo(const RoundTripCase& c, std::ostream* os) {
+  *os << message_name(c.type) << " over " << transport_name(c.transport);
+}
 
-TYPED_TEST(RandomMessageOnEveryTransport, ArrivesEqual) {
-  const bool ok = rc::check(message_name(TypeParam::kType), [](uint8_t seq, const TypeParam& body) {
+std::vector<RoundTripCase> every_transport_and_type() {
+  std::vector<RoundTripCase> cases;
+  for (Transport t : {Transport::kCan, Transport::kUsbBulk, Transport::kUsbMessageOut, Transport::kUsbMessageIn,
+                      Transport::kUart}) {
+    for (MessageType type : body_types()) cases.push_back({t, type});
+  }
+  return cases;
+}
+
+std::string round_trip_case_name(const ::testing::TestParamInfo<RoundTripCase>& info) {
+  return std::string(transport_name(info.param.transport)) + "_" + message_name(info.param.type);
+}
+
+class MessageOverTransport : public ::testing::TestWithParam<RoundTripCase> {};
+
+TEST_P(MessageOverTransport, ArrivesEqual) {
+  const Transport transport = GetParam().transport;
+  const MessageType type = GetParam().type;
+  size_t goldens = 0;
+  for (const auto& [key, golden] : golden_messages()) {
+    if (golden.type() != type) continue;
+    ++goldens;
+    EXPECT_EQ(round_trip(golden, transport, usual_route(golden)), "") << key;
+  }
+  EXPECT_GT(goldens, 0u) << "no golden " << message_name(type) << " in vectors/messages";
+  const bool ok = rc::check(message_name(type), [transport, type](uint8_t seq) {
+    const Message m{seq, *body_of_type(type)};
+    RC_ASSERT(m.type() == type);
     const CanRoute route{*rc::gen::inRange<uint8_t>(0, kCanPriorityLowest + 1),
                          *rc::gen::inRange<uint8_t>(kCanHostNode, kCanLastBoardNode + 1),
                          *rc::gen::arbitrary<uint8_t>()};
-    const std::string failure = round_trip_everywhere(Message{seq, body}, route);
+    const std::string failure = round_trip(m, transport, route);
     if (!failure.empty()) RC_FAIL(failure);
   });
   EXPECT_TRUE(ok);
 }
+
+INSTANTIATE_TEST_SUITE_P(EveryMessage, MessageOverTransport, ::testing::ValuesIn(every_transport_and_type()),
+                         round_trip_case_name);
 
 }  // namespace
 }  // namespace tetrapulse::protocol::testing
