@@ -1,6 +1,7 @@
 // SPEC.md's tables against the code: the message types of §2.2 (code, name, direction,
 // body size of every golden message), the field tables of §2.3-2.6 (offset, size, type and
-// name of every field, in order, as the encoder and decoder walk them) and the errors of §3.
+// name of every field, in order, as the encoder and decoder walk them), the errors of §3 and
+// the CAN faults of §4.4.
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -13,6 +14,7 @@
 #include "golden_messages.hpp"
 #include "hex_vectors.hpp"
 #include "message_testing.hpp"
+#include "tetrapulse/protocol/can_transfer_receiver.hpp"
 
 namespace tetrapulse::protocol::testing {
 namespace {
@@ -270,6 +272,21 @@ TEST(SpecTables, ErrorsAreTheEnumWithItsNames) {
     if (it != by_value.end()) {
       EXPECT_EQ(it->second, name) << "error " << v;
     }
+  }
+}
+
+// §4.4: every CAN fault once, with the name and the Error the code gives it.
+TEST(SpecTables, CanFaultsAreTheEnumWithTheirErrors) {
+  const std::vector<Row> rows = table_after(spec_lines(), "| fault | protocol Error (§3) |");
+  ASSERT_EQ(rows.size() + 1, kCanFaultCount) << "SPEC.md §4.4 lists every fault but kNone";
+  for (size_t f = 1; f < kCanFaultCount; ++f) {
+    const auto fault = static_cast<CanFault>(f);
+    const Row& r = rows[f - 1];
+    ASSERT_GE(r.size(), 2u);
+    EXPECT_EQ(r[0], "`" + std::string(can_fault_name(fault)) + "`") << "fault " << f;
+    // `kBadValue` -> bad_value
+    const std::string error = r[1].size() > 3 ? snake_case(r[1].substr(2, r[1].size() - 3)) : r[1];
+    EXPECT_EQ(error, error_name(can_fault_error(fault))) << can_fault_name(fault);
   }
 }
 
