@@ -2,6 +2,9 @@
 // and write the rig dataset's targets.yaml.
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <set>
@@ -14,8 +17,13 @@
 #include "codebook_constraints.hpp"
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "frequency_codebook_command.hpp"
 #include "tetrapulse/localizer/dataset_io.hpp"
 #include "tetrapulse/localizer/targets.hpp"
+#include "tetrapulse/host/board_config_yaml.hpp"
+#include "tetrapulse/host/config_text.hpp"
+#include "tetrapulse/host/target_board_config.hpp"
+#include "tetrapulse/protocol/can_id.hpp"
 #include "tetrapulse/protocol/codebook.hpp"
 #include "tetrapulse/protocol/codebook_workspace.hpp"
 #include "tetrapulse/protocol/limits.hpp"
@@ -40,7 +48,10 @@ struct GenerateArgs {
   std::string geometry;
   std::vector<int> ids;
   std::string out;
+  std::optional<std::string> board_configs;  // folder; default: "boards" beside --out
+  std::optional<std::string> board_sync;     // none | gpio | can
   bool capacity = false;
+  FrequencyCodebookArgs frequency;
 };
 
 std::vector<uint64_t> search_codes(const CodebookSpec& spec, protocol::CodebookWorkspace& ws) {
@@ -116,6 +127,40 @@ Target builtin_geometry() {
   return t;
 }
 
+int write_board_configs(const TargetsFile& file, const std::string& folder, protocol::SyncSource sync) {
+  for (const Target& t : file.targets) {
+    if (t.id > 65535) {
+      codebook_error(fmt::format("target id {}: a board's target_id is 0..65535", t.id));
+      return kExitUsage;
+    }
+  }
+  if (file.timebase.bit_period_ns < protocol::kMinBitPeriodNs || file.timebase.bit_period_ns > UINT32_MAX) {
+    codebook_error(fmt::format("--bit-period-ns {}: a board plays {}..{} ns", file.timebase.bit_period_ns,
+                               protocol::kMinBitPeriodNs, UINT32_MAX));
+    return kExitUsage;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  for (size_t i = 0; i < file.targets.size(); ++i) {
+    const Target& t = file.targets[i];
+    const std::string path = (std::filesystem::path(folder) / fmt::format("target-{}.yaml", t.id)).string();
+    const std::string header = fmt::format(
+        "Board configuration for target {}{} (tetrapulse codebook); apply with\n"
+        "tetrapulse config --file {} --persist --usb SERIAL (or --can IFACE:NODE, --serial PORT)",
+        t.id, t.name.empty() ? "" : " (" + t.name + ")", path);
+    auto written = write_text_file(path, host::format_board_config_yaml(host::target_board_config(file, i, sync), header));
+    if (!written) {
+      codebook_error(written.error().what());
+      return kExitBadInput;
+    }
+  }
+  if (file.targets.size() > protocol::kCanLastBoardNode) {
+    std::fprintf(stderr, "tetrapulse codebook: more than %u targets: CAN node ids repeat, give each bus its own\n",
+                 unsigned{protocol::kCanLastBoardNode});
+  }
+  return kExitOk;
+}
+
 int run_generate(const GenerateArgs& a) {
   if (!a.capacity && (!a.targets || a.out.empty())) {
     codebook_error("--targets and --out are required (or `tetrapulse codebook check FILE`, or --capacity)");
@@ -126,6 +171,7 @@ int run_generate(const GenerateArgs& a) {
     codebook_error("--low: only meaningful with --modulation two_level");
     return kExitUsage;
   }
+  if (a.frequency.frequency() && a.capacity) return run_frequency_capacity(a.frequency, modulation);
   const CodeTiming timing = a.free_running ? CodeTiming::kFreeRunning : CodeTiming::kSynchronized;
   auto spec = codebook_spec(a.constraints, timing, modulation, std::nullopt);
   if (!spec) {
@@ -178,7 +224,17 @@ int run_generate(const GenerateArgs& a) {
     return kExitUsage;
   }
 
-  const std::vector<uint64_t> codes = search_codes(*spec, *ws);
+  // Frequency codes come from the camera's sampling, not from the search.
+  std::optional<FrequencyChoice> frequency;
+  if (a.frequency.frequency()) {
+    auto chosen = choose_frequency_codebook(a.frequency, modulation, spec->count, per_marker, targets);
+    if (!chosen) {
+      codebook_error(chosen.error().message);
+      return chosen.error().exit;
+    }
+    frequency = std::move(*chosen);
+  }
+  const std::vector<uint64_t> codes = frequency ? frequency->words() : search_codes(*spec, *ws);
   if (codes.size() < spec->count) {
     codebook_error(
         fmt::format("found only {} of the {} codes that {} targets need ({}); {}", codes.size(), spec->count, targets,
@@ -190,7 +246,7 @@ int run_generate(const GenerateArgs& a) {
   TargetsFile out;
   out.timebase.synchronized = timing == CodeTiming::kSynchronized;
   out.timebase.epoch_ns = 0;
-  out.timebase.bit_period_ns = a.bit_period_ns;
+  out.timebase.bit_period_ns = frequency ? frequency->bit_period_ns : a.bit_period_ns;
   out.modulation.kind = modulation;
   out.modulation.low = modulation == ModulationKind::kTwoLevel ? a.low.value_or(0.3) : 0.0;
   for (size_t i = 0; i < targets; ++i) {
@@ -198,20 +254,23 @@ int run_generate(const GenerateArgs& a) {
     t.id = ids[i];
     if (shapes.size() != targets) t.name = fmt::format("{}-{}", t.name.empty() ? "target" : t.name, t.id);
     for (size_t k = 0; k < kMarkers; ++k) {
-      const uint64_t w = codes[per_marker ? kMarkers * i + k : i];
-      t.markers[k].code = Code{w, spec->length};
+      const size_t j = per_marker ? kMarkers * i + k : i;
+      t.markers[k].code = frequency ? frequency->codes[j] : Code{codes[j], spec->length};
     }
     out.targets.push_back(std::move(t));
   }
-  // Per-board configuration (the code table a board plays) belongs here once
-  // the protocol's configuration messages exist; targets.yaml is the source.
   auto written = write_text_file(a.out, format_targets_yaml(out));
   if (!written) {
     codebook_error(written.error().what());
     return kExitBadInput;
   }
-  fmt::print("{}: {} targets, {} codes ({}), seed {}\n", a.out, targets, codes.size(), describe_codebook_spec(*spec),
-             a.seed);
+  // One board configuration per target, for `tetrapulse config --file`.
+  const std::string folder =
+      a.board_configs.value_or((std::filesystem::path(a.out).parent_path() / "boards").string());
+  const protocol::SyncSource sync = *host::parse_sync_source(a.board_sync.value_or(timing == CodeTiming::kSynchronized ? "can" : "none"));
+  if (const int r = write_board_configs(out, folder, sync); r != kExitOk) return r;
+  fmt::print("{}: {} targets, {} codes ({}), seed {}; board configurations in {}/ (sync {})\n", a.out, targets,
+             codes.size(), frequency ? frequency->description : describe_codebook_spec(*spec), a.seed, folder, host::sync_source_name(sync));
   return kExitOk;
 }
 
@@ -245,11 +304,20 @@ void add_codebook_command(CLI::App& app, int* result) {
   cmd->add_option("--ids", gen->ids, "Target ids, comma-separated (default 1..N)")->delimiter(',');
   cmd->add_option("--out", gen->out, "targets.yaml to write");
   cmd->add_flag("--capacity", gen->capacity, "Only report how many codes the constraints allow (by search)");
+  cmd->add_option("--board-configs", gen->board_configs,
+                  "Folder for one board configuration per target, target-ID.yaml (default: boards/ beside --out)");
+  cmd->add_option("--board-sync", gen->board_sync,
+                  "Sync source in the board configurations: none, gpio or can (default: can when synchronized, "
+                  "none when free-running)")
+      ->check(CLI::IsMember({"none", "gpio", "can"}));
+
+  add_frequency_codebook_options(cmd, &gen->frequency);
 
   add_codebook_check_command(cmd, result);
   cmd->require_subcommand(0, 1);
   cmd->callback([result, gen, cmd] {
     if (cmd->got_subcommand("check")) return;
+    if (cmd->count("--bit-period-ns") > 0) gen->frequency.bit_period_ns = gen->bit_period_ns;
     *result = run_generate(*gen);
   });
 }

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "tetrapulse/host/sim_rig.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 #include "tetrapulse/sim/dataset_simulation.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"
@@ -26,6 +27,7 @@ struct SimArgs {
   bool ci = false;
   bool force = false;
   bool list = false;
+  bool host_boards = false;
   std::string print;
 };
 
@@ -77,11 +79,19 @@ int run_sim(const SimArgs& a) {
   options.seed = a.seed;
   options.frames = a.frames;
   options.ci = a.ci;
-  auto summary = sim::simulate_dataset(*scenario, options);
-  if (!summary) return fail(kExitFailure, summary.error().what());
+  sim::SimulationSummary summary;
+  if (a.host_boards) {
+    auto done = host::simulate_with_host_boards(*scenario, options);
+    if (!done) return fail(kExitFailure, done.error().what());
+    summary = *done;
+  } else {
+    auto done = sim::simulate_dataset(*scenario, options);
+    if (!done) return fail(kExitFailure, done.error().what());
+    summary = *done;
+  }
   fmt::print("tetrapulse sim: {} (seed {}): {} frames written, {} dropped, {} ground-truth poses in {}\n",
-             scenario->name, summary->seed, summary->frames_written, summary->frames_dropped,
-             summary->groundtruth_rows, a.out);
+             scenario->name, summary.seed, summary.frames_written, summary.frames_dropped,
+             summary.groundtruth_rows, a.out);
   return kExitOk;
 }
 
@@ -97,6 +107,9 @@ void add_sim_command(CLI::App& app, int* result) {
       ->check(CLI::Range(int64_t{1}, int64_t{10'000'000}));
   cmd->add_flag("--ci", args->ci, "The scenario's CI-sized variant (its ci_count frames)");
   cmd->add_flag("--force", args->force, "Write into a folder that is not empty");
+  cmd->add_flag("--host-boards", args->host_boards,
+                "Configure and synchronise the simulated boards through the host's Board, GpioSync and CanSync "
+                "code over simulated links, as on a real rig (the dataset is the same)");
   cmd->add_flag("--list", args->list, "List the built-in scenarios");
   cmd->add_option("--print", args->print, "Print a built-in scenario's YAML (a starting point for your own)");
   cmd->footer("Scenario format: sim/SCENARIOS.md. Dataset format: spec/rig-dataset.md.");

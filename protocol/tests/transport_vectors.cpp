@@ -1,5 +1,7 @@
 #include "transport_vectors.hpp"
 
+#include <iterator>
+
 namespace tetrapulse::protocol::testing {
 namespace {
 
@@ -45,6 +47,39 @@ tl::expected<CanTransferVector, std::string> can_transfer_vector(const HexFile& 
     v.frames.push_back(frame);
   }
   return v;
+}
+
+tl::expected<UsbDescriptorVector, std::string> usb_descriptor_vector(const HexFile& file) {
+  const HexRecord* params = file.find("params");
+  const HexRecord* device = file.find("device");
+  const HexRecord* configuration = file.find("configuration");
+  if (params == nullptr || device == nullptr || configuration == nullptr) {
+    return tl::make_unexpected(file.path + ": a descriptor vector needs [params], [device] and [configuration]");
+  }
+  const char* const keys[] = {"bootloader",     "bcd_device",        "max_power_2ma", "self_powered",
+                              "bulk_out",       "bulk_in",           "dfu_attributes", "detach_timeout_ms",
+                              "transfer_size",  "dfu_functional"};
+  uint64_t v[std::size(keys)] = {};
+  for (size_t i = 0; i < std::size(keys); ++i) {
+    const auto n = bounded(*params, keys[i], 0xFFFF);
+    if (!n) return tl::make_unexpected(n.error());
+    v[i] = *n;
+  }
+  UsbDescriptorVector d;
+  d.path = file.path;
+  d.params.mode = v[0] != 0 ? UsbMode::kBootloader : UsbMode::kApplication;
+  d.params.bcd_device = static_cast<uint16_t>(v[1]);
+  d.params.max_power_2ma = static_cast<uint8_t>(v[2]);
+  d.params.self_powered = v[3] != 0;
+  d.params.bulk_out_address = static_cast<uint8_t>(v[4]);
+  d.params.bulk_in_address = static_cast<uint8_t>(v[5]);
+  d.params.dfu_attributes = static_cast<uint8_t>(v[6]);
+  d.params.dfu_detach_timeout_ms = static_cast<uint16_t>(v[7]);
+  d.params.dfu_transfer_size = static_cast<uint16_t>(v[8]);
+  d.params.dfu_functional_descriptor = v[9] != 0;
+  d.device = device->bytes;
+  d.configuration = configuration->bytes;
+  return d;
 }
 
 tl::expected<std::vector<HexFile>, std::string> read_vectors(const std::string& folder, const std::string& prefix) {

@@ -10,6 +10,7 @@
 #include "hex_vectors.hpp"
 #include "tetrapulse/protocol/can_frame.hpp"
 #include "tetrapulse/protocol/can_transfer_sender.hpp"
+#include "tetrapulse/protocol/usb_descriptors.hpp"
 
 namespace tetrapulse::protocol::testing {
 
@@ -24,6 +25,17 @@ struct CanTransferVector {
 
 // The error names the file and what is missing or out of range.
 tl::expected<CanTransferVector, std::string> can_transfer_vector(const HexFile& file);
+
+// One USB descriptor set: [params] the fields of UsbDeviceParams, [device], [configuration].
+struct UsbDescriptorVector {
+  std::string path;
+  UsbDeviceParams params;
+  std::vector<uint8_t> device;
+  std::vector<uint8_t> configuration;
+};
+
+// The error names the file and what is missing.
+tl::expected<UsbDescriptorVector, std::string> usb_descriptor_vector(const HexFile& file);
 
 // Every file in vectors/<folder> whose name starts with `prefix`; none is an error.
 tl::expected<std::vector<HexFile>, std::string> read_vectors(const std::string& folder,

@@ -102,26 +102,16 @@ TEST(TransportVectors, UsbDescriptors) {
   const auto files = read_all("usb", "descriptors_");
   ASSERT_GE(files.size(), 3u);
   for (const HexFile& f : files) {
+    const auto v = usb_descriptor_vector(f);
+    ASSERT_TRUE(v.has_value()) << v.error();
     SCOPED_TRACE(f.path);
-    const auto param = [&](const char* key) { return record_number(f, "params", key); };
-    UsbDeviceParams p;
-    p.mode = param("bootloader") != 0 ? UsbMode::kBootloader : UsbMode::kApplication;
-    p.bcd_device = static_cast<uint16_t>(param("bcd_device"));
-    p.max_power_2ma = static_cast<uint8_t>(param("max_power_2ma"));
-    p.self_powered = param("self_powered") != 0;
-    p.bulk_out_address = static_cast<uint8_t>(param("bulk_out"));
-    p.bulk_in_address = static_cast<uint8_t>(param("bulk_in"));
-    p.dfu_attributes = static_cast<uint8_t>(param("dfu_attributes"));
-    p.dfu_detach_timeout_ms = static_cast<uint16_t>(param("detach_timeout_ms"));
-    p.dfu_transfer_size = static_cast<uint16_t>(param("transfer_size"));
-    p.dfu_functional_descriptor = param("dfu_functional") != 0;
     uint8_t out[kUsbMaxConfigurationSize];
-    Result<size_t> n = build_usb_device_descriptor(p, out, sizeof(out));
+    Result<size_t> n = build_usb_device_descriptor(v->params, out, sizeof(out));
     ASSERT_TRUE(n.ok());
-    EXPECT_EQ(Bytes(out, out + *n), record_bytes(f, "device"));
-    n = build_usb_configuration_descriptor(p, out, sizeof(out));
+    EXPECT_EQ(Bytes(out, out + *n), v->device);
+    n = build_usb_configuration_descriptor(v->params, out, sizeof(out));
     ASSERT_TRUE(n.ok());
-    EXPECT_EQ(Bytes(out, out + *n), record_bytes(f, "configuration"));
+    EXPECT_EQ(Bytes(out, out + *n), v->configuration);
   }
 }
 

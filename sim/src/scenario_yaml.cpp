@@ -148,8 +148,21 @@ TimeIntervals read_intervals(MapReader& r, const std::string& key) {
 }
 
 void read_board(Fields& f, const YAML::Node& node, const std::string& path, bool synchronized, BoardClockSpec* out) {
-  MapReader r(f, node, path, {"clock_ppm", "clock_offset_ns", "sync_loss_s"});
+  MapReader r(f, node, path, {"clock_ppm", "clock_offset_ns", "sync_loss_s", "sync"});
   out->free_running = !synchronized;
+  const std::string sync = r.text("sync", synchronized ? "gpio" : "none");
+  if (r.ok()) {
+    if (sync == "gpio" && synchronized) {
+      out->sync = BoardSync::kGpio;
+    } else if (sync == "can" && synchronized) {
+      out->sync = BoardSync::kCan;
+    } else if (sync == "none" && !synchronized) {
+      out->sync = BoardSync::kNone;
+    } else {
+      r.fail("sync", synchronized ? fmt::format("'{}' is not gpio or can (the time base is synchronized)", sync)
+                                  : fmt::format("'{}': the time base is not synchronized, so only none", sync));
+    }
+  }
   out->drift_ppm = r.number("clock_ppm", Range::closed(-kMaxClockPpm, kMaxClockPpm), 0.0);
   out->offset_ns = r.integer("clock_offset_ns", Range::closed(-4e18, 4e18), 0);
   out->sync_loss = read_intervals(r, "sync_loss_s");
@@ -191,6 +204,7 @@ void read_target_simulation(Fields& f, const YAML::Node& node, size_t index, boo
     read_board(f, board, path + ".board", synchronized, &out->clock);
   } else {
     out->clock.free_running = !synchronized;
+    out->clock.sync = synchronized ? BoardSync::kGpio : BoardSync::kNone;
   }
   read_occlusions(f, r.child("occlusions", false), path + ".occlusions", &out->occluded);
   out->motion = read_motion(f, r.child("motion"), path + ".motion");

@@ -1,14 +1,26 @@
 #include "tetrapulse/sim/scene_builder.hpp"
 
 #include "tetrapulse/sim/code_emitter.hpp"
+#if TETRAPULSE_SIM_FIRMWARE_BOARDS
+#include "tetrapulse/sim/firmware_board_emitter.hpp"
+#endif
 #include "tetrapulse/sim/occluded_emitter.hpp"
 #include "tetrapulse/sim/random.hpp"
 
 namespace tetrapulse::sim {
 
-std::unique_ptr<LedEmitter> contract_board_emitter(const TargetsFile& targets, size_t index,
-                                                   const BoardClockSpec& clock) {
-  return std::make_unique<CodeEmitter>(targets.timebase, targets.modulation, targets.targets[index], BoardClock(clock));
+std::unique_ptr<LedEmitter> contract_board_emitter(const Scenario& scenario, size_t index) {
+  const TargetsFile& targets = scenario.targets;
+  return std::make_unique<CodeEmitter>(targets.timebase, targets.modulation, targets.targets[index],
+                                       BoardClock(scenario.simulation[index].clock));
+}
+
+BoardEmitterFactory default_board_emitter() {
+#if TETRAPULSE_SIM_FIRMWARE_BOARDS
+  return [](const Scenario& scenario, size_t index) { return firmware_board_emitter(scenario, index); };
+#else
+  return contract_board_emitter;
+#endif
 }
 
 Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFactory& board) {
@@ -24,7 +36,7 @@ Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFac
     scene.bodies.emplace_back(sim.motion, stream_seed(seed, kStreamMotion, motion_index++));
     const int emitter = static_cast<int>(scene.emitters.size());
     scene.emitters.push_back(std::make_unique<OccludedEmitter>(
-        board(tf, k, sim.clock), std::vector<TimeIntervals>(sim.occluded.begin(), sim.occluded.end())));
+        board(scenario, k), std::vector<TimeIntervals>(sim.occluded.begin(), sim.occluded.end())));
     SceneTarget st;
     st.id = target.id;
     st.body = body;

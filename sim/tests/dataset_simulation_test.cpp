@@ -151,8 +151,8 @@ class DarkBoard : public LedEmitter {
 TEST(DatasetSimulation, ABoardEmitterCanReplaceTheContractFormula) {
   const Scenario s = builtin("passive");
   int made = 0;
-  const Scene lit = build_scene(s, 1);
-  const Scene dark = build_scene(s, 1, [&](const TargetsFile&, size_t, const BoardClockSpec&) {
+  const Scene lit = build_scene(s, 1, contract_board_emitter);
+  const Scene dark = build_scene(s, 1, [&](const Scenario&, size_t) {
     ++made;
     return std::make_unique<DarkBoard>();
   });

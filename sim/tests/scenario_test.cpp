@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/protocol/codebook_frequency.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"
 
@@ -23,8 +24,9 @@ Scenario builtin(const std::string& name) {
   return s ? *s : Scenario{};
 }
 
-TEST(BuiltinScenarios, AllSevenExistAndParse) {
-  const std::set<std::string> expected = {"paper-exp1", "paper-far", "swarm", "unsync", "passive", "clutter", "fisheye"};
+TEST(BuiltinScenarios, AllExistAndParse) {
+  const std::set<std::string> expected = {"paper-exp1", "paper-far", "swarm",   "unsync",
+                                          "passive",    "clutter",   "fisheye", "frequency"};
   std::set<std::string> names;
   for (const BuiltinScenario& b : builtin_scenarios()) {
     names.insert(b.name);
@@ -55,7 +57,7 @@ TEST(BuiltinScenarios, TargetsHaveThePapersGeometry) {
   for (const char* name : {"paper-exp1", "paper-far", "passive", "clutter", "fisheye"}) {
     expect_geometry(builtin(name), "paper-large.yaml");
   }
-  for (const char* name : {"swarm", "unsync"}) expect_geometry(builtin(name), "paper-half-active.yaml");
+  for (const char* name : {"swarm", "unsync", "frequency"}) expect_geometry(builtin(name), "paper-half-active.yaml");
 }
 
 TEST(BuiltinScenarios, PaperExperimentOneSetup) {
@@ -144,6 +146,26 @@ TEST(BuiltinScenarios, CodesMeetTheirTimeBasesConstraints) {
       continue;
     }
     EXPECT_EQ(codes.size(), 4 * s.targets.targets.size()) << b.name << ": one code per marker";
+    if (std::all_of(codes.begin(), codes.end(), [](const Code& c) {
+          return protocol::is_square_wave(c.bits, c.length, nullptr);
+        })) {
+      // Frequency codes (SPEC.md §8.5): the distinct ones separable at this camera.
+      std::vector<uint64_t> words;
+      std::vector<uint8_t> lengths;
+      for (const Code& c : codes) {
+        bool seen = false;
+        for (size_t i = 0; i < words.size(); ++i) seen = seen || (words[i] == c.bits && lengths[i] == c.length);
+        if (seen) continue;
+        words.push_back(c.bits);
+        lengths.push_back(static_cast<uint8_t>(c.length));
+      }
+      protocol::FrequencySpec spec;
+      spec.camera = protocol::CameraTiming{s.frames.period_ns, s.frames.exposure_ns};
+      spec.bit_period_ns = s.targets.timebase.bit_period_ns;
+      const protocol::FrequencyReport r = protocol::check_frequency_codes(spec, words.data(), lengths.data(), words.size());
+      EXPECT_TRUE(r.ok()) << b.name << ": " << protocol::frequency_fault_name(r.fault) << " at code " << r.code;
+      continue;
+    }
     EXPECT_EQ(code_violations(codes, s.targets.timebase.synchronized), "") << b.name;
   }
 }
@@ -202,6 +224,11 @@ TEST(ScenarioYaml, MalformedFilesNameTheFieldAndLine) {
        "targets[0].occlusions[0].to_s: must be later than from_s", 0},
       {"sync loss without sync", replace(unsync, "      clock_offset_ns: 3712345", "      clock_offset_ns: 3712345\n      sync_loss_s: [[1, 2]]"),
        "targets[0].board.sync_loss_s: the time base is not synchronized", 0},
+      {"can sync without a synchronized time base",
+       replace(unsync, "      clock_offset_ns: 3712345", "      clock_offset_ns: 3712345\n      sync: can"),
+       "targets[0].board.sync: 'can': the time base is not synchronized, so only none", 0},
+      {"unknown sync", replace(base, "clock_ppm: 120", "clock_ppm: 120\n      sync: ptp"),
+       "targets[0].board.sync: 'ptp' is not gpio or can", 0},
       {"fisheye coefficient count", replace(fisheye, "[0.01, -0.005, 0.001, 0.0]", "[0.01, -0.005, 0.001, 0.0, 0.0]"),
        "camera.distortion_coefficients: expected 4 (k1 k2 k3 k4) numbers", 0},
       {"flicker kind", replace(base, "{kind: sine,", "{kind: strobe,"), "distractors[1].flicker.kind: 'strobe'", 0},

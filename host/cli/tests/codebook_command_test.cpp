@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "exit_codes.hpp"
 #include "tetrapulse/localizer/dataset_io.hpp"
 #include "tetrapulse/protocol/codebook.hpp"
+#include "tetrapulse/protocol/codebook_frequency.hpp"
 
 namespace tetrapulse::cli {
 namespace {
@@ -301,6 +303,62 @@ TEST(CodebookCommand, CapacityReportsWhatTheSearchFound) {
   const CommandRun r = codebook(dir, {"--capacity", "--length", "7", "--weights", "any", "--max-zero-run", "none"});
   ASSERT_EQ(r.exit, kExitOk) << r.err;
   EXPECT_NE(r.out.find("found 16 codes"), std::string::npos) << r.out;  // A(7,3) = 16
+}
+
+// --family frequency: square waves of different lengths for one camera, separable at it.
+TEST(CodebookCommand, FrequencyFamilyWritesSeparableSquareWaves) {
+  TempDir dir;
+  const std::string out = dir.path("targets.yaml");
+  const CommandRun r = codebook(dir, {"--family", "frequency", "--fps", "100", "--exposure", "2ms", "--targets", "8",
+                                      "--per", "target", "--free-running", "--out", out});
+  ASSERT_EQ(r.exit, kExitOk) << r.err;
+  EXPECT_EQ(lines(r.out), 1u) << r.out;
+  EXPECT_NE(r.out.find("frequency codes"), std::string::npos) << r.out;
+  auto file = read_targets_yaml(out);
+  ASSERT_TRUE(file) << file.error().what();
+  EXPECT_FALSE(file->timebase.synchronized);
+  ASSERT_EQ(file->targets.size(), 8u);
+  std::vector<uint64_t> words;
+  std::vector<uint8_t> lengths;
+  for (const Target& t : file->targets) {
+    for (const Marker& m : t.markers) EXPECT_EQ(m.code, t.markers[0].code);  // one code per target
+    words.push_back(t.markers[0].code->bits);
+    lengths.push_back(static_cast<uint8_t>(t.markers[0].code->length));
+  }
+  EXPECT_GT(std::set<uint8_t>(lengths.begin(), lengths.end()).size(), 1u) << "codes of different lengths";
+  protocol::FrequencySpec spec;
+  spec.camera = protocol::CameraTiming{10'000'000, 2'000'000};
+  spec.bit_period_ns = file->timebase.bit_period_ns;
+  const protocol::FrequencyReport report = protocol::check_frequency_codes(spec, words.data(), lengths.data(), 8);
+  EXPECT_TRUE(report.ok()) << protocol::frequency_fault_name(report.fault) << " " << report.code;
+}
+
+TEST(CodebookCommand, FrequencyFamilyRefusesBeyondTheCameraAndSaysTheMost) {
+  TempDir dir;
+  const CommandRun cap = codebook(dir, {"--family", "frequency", "--fps", "100", "--exposure", "1ms", "--capacity"});
+  ASSERT_EQ(cap.exit, kExitOk) << cap.err;
+  const size_t at = cap.out.find(" separable frequency codes");
+  ASSERT_NE(at, std::string::npos) << cap.out;
+  const int most = std::stoi(cap.out.substr(cap.out.rfind(' ', at - 1) + 1));
+  EXPECT_GE(most, 8) << cap.out;  // acceptance: a 100 fps camera separates at least 8
+  const std::string out = dir.path("targets.yaml");
+  const CommandRun over = codebook(dir, {"--family", "frequency", "--fps", "100", "--exposure", "1ms", "--targets",
+                                         std::to_string(most + 1), "--per", "target", "--out", out});
+  EXPECT_EQ(over.exit, kExitCheckFailed);
+  EXPECT_EQ(lines(over.err), 1u) << over.err;
+  EXPECT_NE(over.err.find("separates at most " + std::to_string(most)), std::string::npos) << over.err;
+  EXPECT_FALSE(fs::exists(out));
+  const CommandRun fits = codebook(dir, {"--family", "frequency", "--fps", "100", "--exposure", "1ms", "--targets",
+                                         std::to_string(most), "--per", "target", "--out", out});
+  EXPECT_EQ(fits.exit, kExitOk) << fits.err;
+  // Bad camera options are command-line errors.
+  EXPECT_EQ(codebook(dir, {"--family", "frequency", "--targets", "2", "--out", out}).exit, kExitUsage);
+  EXPECT_EQ(codebook(dir, {"--family", "frequency", "--fps", "100", "--exposure", "11ms", "--targets", "2", "--out",
+                           out}).exit,
+            kExitUsage);
+  EXPECT_EQ(codebook(dir, {"--family", "frequency", "--fps", "100", "--exposure", "1 fortnight", "--targets", "2",
+                           "--out", out}).exit,
+            kExitUsage);
 }
 
 }  // namespace

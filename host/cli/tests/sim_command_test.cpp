@@ -113,5 +113,21 @@ TEST(SimCommand, BadScenarioFilesGiveOneLineNamingFileLineAndField) {
   EXPECT_EQ(run("sim paper-exp1").exit_code, 2);  // no --out
 }
 
+
+TEST(SimCommand, HostBoardsGiveTheSameDataset) {
+  TempDir dir;
+  const CliRun direct = run("sim paper-exp1 --frames 3 --out " + dir.path("direct"));
+  ASSERT_EQ(direct.exit_code, 0) << direct.output;
+  const CliRun host = run("sim paper-exp1 --frames 3 --host-boards --out " + dir.path("host"));
+  ASSERT_EQ(host.exit_code, 0) << host.output;
+  for (const char* file : {"frames.csv", "groundtruth.csv", "frames/000000.png", "frames/000002.png"}) {
+    std::ifstream a(dir.path("direct") + "/" + file, std::ios::binary), b(dir.path("host") + "/" + file, std::ios::binary);
+    const std::string da((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+    const std::string db((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+    EXPECT_FALSE(da.empty()) << file;
+    EXPECT_EQ(da, db) << file;
+  }
+}
+
 }  // namespace
 }  // namespace tetrapulse

@@ -75,6 +75,36 @@ TEST_F(TargetCommand, ChecksThePapersTargetAndSaysItOvershootsD2) {
   EXPECT_NE(json.out.find("\"quantity\": \"d01\""), std::string::npos) << json.out;
 }
 
+// The half-size targets (paper Sec. III-A: same proportions, half the size) at half the
+// paper's limits: every distance, s_min and face height halves, and the one violation is
+// the large target's d01, halved.
+TEST_F(TargetCommand, ChecksThePapersHalfSizeTargetsAtHalfTheLimits) {
+  for (const char* name : {"paper-half-active", "paper-half-passive"}) {
+    const std::string file = source(std::string("hardware/targets/") + name + ".yaml");
+    const CliRun r = run("target check --d1 0.075 --d2 0.15 --h 0.06 " + file);
+    EXPECT_EQ(r.exit_code, 6) << name << "\n" << r.out << r.err;  // d01 = 15.003 cm > D2 = 15 cm
+    EXPECT_NE(r.out.find("s_min 0.014920 m"), std::string::npos) << r.out;  // 0.029840 / 2
+    EXPECT_NE(r.out.find("distances 0.075280 .. 0.150029 m"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("min 0.063172 m"), std::string::npos) << r.out;  // face height 0.126343 / 2 >= H
+    EXPECT_NE(r.out.find(std::string("FAIL: target 0 (") + name + "): d01 = 0.150029 m > D2 = 0.15 m"),
+              std::string::npos)
+        << r.out;
+    const size_t fail = r.out.find("FAIL");
+    ASSERT_NE(fail, std::string::npos) << r.out;
+    EXPECT_EQ(lines(r.out.substr(fail)), 1) << r.out;  // nothing else fails
+  }
+  // Marker size is the only difference between the two files: larger discs overlap more often.
+  const auto overlap = [&](const char* name) {
+    const CliRun r = run("target check --views 500 --d1 0.075 --d2 0.15 --h 0.06 " +
+                         source(std::string("hardware/targets/") + name + ".yaml"));
+    const size_t at = r.out.find("discs overlap in ");
+    return at == std::string::npos ? -1.0 : std::stod(r.out.substr(at + 17));
+  };
+  const double active = overlap("paper-half-active"), passive = overlap("paper-half-passive");
+  EXPECT_GE(active, 0.0);
+  EXPECT_GT(passive, active);
+}
+
 TEST_F(TargetCommand, OptimisesAValidTargetsFileThatPassesCheck) {
   const CliRun r = run("target optimize --targets 2 --restarts 30 --seed 3 --threads 2 --out " + path("t.yaml"));
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -21,8 +21,8 @@ namespace tetrapulse::protocol {
 
 struct CodebookWorkspace;
 
-// Which kind of code. Frequency codes (square waves "10", "1100", "111000";
-// issue 8) will be added as a second family; until then only kBinary exists.
+// Which kind of code this search makes. Frequency codes (square waves "10",
+// "1100", "111000") are chosen differently: codebook_frequency.hpp.
 enum class CodeFamily : uint8_t {
   kBinary = 0,  // arbitrary words of one length, chosen by search
 };

@@ -14,8 +14,17 @@
 
 namespace tetrapulse::sim {
 
+// How a board is synchronized (what a simulated firmware board receives; the contract
+// formula only needs free_running and the offset).
+enum class BoardSync {
+  kGpio,  // edges on its sync input at the camera's exposure starts
+  kCan,   // Sync/FollowUp broadcasts over CAN
+  kNone,  // no sync: free-running
+};
+
 struct BoardClockSpec {
   bool free_running = false;  // never synchronized: epoch and exact rate unknown to the localizer
+  BoardSync sync = BoardSync::kGpio;  // kNone exactly when free_running
   double drift_ppm = 0;       // crystal error: board ns per rig ns is 1 + drift_ppm 1e-6
   int64_t offset_ns = 0;      // board time minus rig time when locked (or at rig time 0 when free-running)
   TimeIntervals sync_loss;    // rig-time intervals in which a synchronized board free-runs

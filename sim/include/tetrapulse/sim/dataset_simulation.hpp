@@ -20,7 +20,7 @@ struct SimulationOptions {
   std::optional<uint64_t> seed;     // default: the scenario's
   std::optional<int64_t> frames;    // frame numbers 0 .. frames - 1; default: the scenario's count
   bool ci = false;                  // use the scenario's ci_count (when frames is not given)
-  BoardEmitterFactory board = contract_board_emitter;  // what drives each target's LEDs
+  BoardEmitterFactory board = default_board_emitter();  // what drives each target's LEDs
 };
 
 struct SimulationSummary {

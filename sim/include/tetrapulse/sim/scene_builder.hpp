@@ -12,14 +12,18 @@
 
 namespace tetrapulse::sim {
 
-// The light of target `index`'s board (its four markers as lights 0..3). The
-// default plays the contract's formula (CodeEmitter); a simulated board running
-// the firmware's code player plugs in here, the renderer unchanged. Occlusions
-// are applied around whatever it returns.
-using BoardEmitterFactory =
-    std::function<std::unique_ptr<LedEmitter>(const TargetsFile& targets, size_t index, const BoardClockSpec& clock)>;
-std::unique_ptr<LedEmitter> contract_board_emitter(const TargetsFile& targets, size_t index, const BoardClockSpec& clock);
+// The light of target `index`'s board (its four markers as lights 0..3), given the whole
+// scenario (targets, the board's clock and sync, the frames a GPIO strobe follows).
+// contract_board_emitter plays the contract's formula (CodeEmitter); a simulated board
+// running the firmware (firmware_board_emitter.hpp) plugs in here, the renderer
+// unchanged. Occlusions are applied around whatever it returns.
+using BoardEmitterFactory = std::function<std::unique_ptr<LedEmitter>(const Scenario& scenario, size_t index)>;
+std::unique_ptr<LedEmitter> contract_board_emitter(const Scenario& scenario, size_t index);
 
-Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFactory& board = contract_board_emitter);
+// The firmware board emitter when the firmware core is part of the build, else the
+// contract formula.
+BoardEmitterFactory default_board_emitter();
+
+Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFactory& board = default_board_emitter());
 
 }  // namespace tetrapulse::sim

@@ -1,0 +1,294 @@
+// The clock servo on the simulated board: lock time, LED edge accuracy, outliers, holdover.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "board_testing.hpp"
+
+namespace tetrapulse::fw::testing {
+namespace {
+
+using protocol::GpioEdgeNumbering;
+using protocol::SyncSource;
+using protocol::SyncState;
+
+constexpr int64_t kEdgePeriod = 10 * kMs;  // 100 Hz camera
+
+sim_board::SimBoardOptions board_at(double ppm, int64_t power_on_ns = 0) {
+  sim_board::SimBoardOptions o;
+  o.clock_ppm = ppm;
+  o.power_on_ns = power_on_ns;
+  return o;
+}
+
+protocol::Config gpio_config(GpioEdgeNumbering numbering, uint32_t bit_period_ns = 1 * kMs) {
+  protocol::Config c = edge_rich_config(bit_period_ns);
+  c.sync_source = SyncSource::kGpio;
+  c.gpio_edge_period_ns = kEdgePeriod;
+  c.gpio_edge_epoch_ns = 0;
+  c.gpio_edge_numbering = numbering;
+  return c;
+}
+
+// Runs GPIO edges every kEdgePeriod from `from` to `to` (rig ns); FollowUps on USB every
+// second give coarse time. Returns the rig time the board first reported locked (or -1).
+int64_t run_gpio(TestBoard& b, int64_t from, int64_t to, int64_t skip_edge_at = -1, int64_t extra_edge_at = -1) {
+  int64_t locked_at = -1;
+  uint16_t seq = 0;
+  for (int64_t t = from; t < to; t += kEdgePeriod) {
+    if (t % kSecond == 0) {
+      // The host's coarse time, a little late (USB latency 300 us).
+      b.host.send(LinkKind::kUsb, protocol::Message{0, protocol::FollowUp{seq++, t}}, t + 300'000);
+    }
+    if (t != skip_edge_at) b.board.sync_edge(t);
+    if (extra_edge_at >= t && extra_edge_at < t + kEdgePeriod) b.board.sync_edge(extra_edge_at);
+    if (locked_at < 0 && b.sync_state() == SyncState::kLocked) locked_at = t;
+  }
+  b.board.advance_to(to);
+  return locked_at;
+}
+
+class GpioLock : public ::testing::TestWithParam<std::tuple<double, GpioEdgeNumbering>> {};
+
+TEST_P(GpioLock, LocksWithin2sAt100ppmAndEdgesWithin1us) {
+  const auto [ppm, numbering] = GetParam();
+  // Power on at an odd time, so the counter's zero is nowhere near an edge.
+  TestBoard b(board_at(ppm, 123'456'789));
+  const int64_t start = 2 * kSecond;
+  b.board.advance_to(start - 500 * kMs);  // sync input enabled well before the first edge
+  b.configure(gpio_config(numbering));
+  const int64_t locked_at = run_gpio(b, start, start + 6 * kSecond);
+  ASSERT_GE(locked_at, 0) << "never locked";
+  const double lock_s = static_cast<double>(locked_at - start) / 1e9;
+  const EdgeTiming timing = edge_timing(b.board, protocol::TimeBase{0, 1 * kMs}, locked_at, start + 6 * kSecond);
+  std::printf("[measure] gpio %+.0f ppm numbering %d: lock %.3f s, edges %zu, max |err| %.1f ns, mean %.1f ns, rms %.1f ns\n",
+              ppm, static_cast<int>(numbering), lock_s, timing.count, timing.max_abs_ns, timing.mean_ns, timing.rms_ns);
+  EXPECT_LT(lock_s, 2.0);
+  EXPECT_GT(timing.count, 10000u);
+  EXPECT_LT(timing.max_abs_ns, 1000.0);
+  const protocol::StatusReport s = b.board.status();
+  EXPECT_EQ(s.sync_state, SyncState::kLocked);
+  EXPECT_NEAR(s.rate_ppb, ppm * 1000, 100);
+}
+
+INSTANTIATE_TEST_SUITE_P(ClockServo, GpioLock,
+                         ::testing::Combine(::testing::Values(-100.0, -37.0, 0.0, 61.0, 100.0),
+                                            ::testing::Values(GpioEdgeNumbering::kNearestCoarseTime,
+                                                              GpioEdgeNumbering::kCountAfterGap)));
+
+}  // namespace
+}  // namespace tetrapulse::fw::testing
+
+namespace tetrapulse::fw::testing {
+namespace {
+
+struct CanRun {
+  int64_t locked_at = -1;
+};
+
+// Sync/FollowUp over CAN at `rate_hz` from `from` to `to`; each Sync reaches the board
+// `jitter` later (uniform in [0, jitter_ns]: interrupt latency, arbitration), its FollowUp
+// 1 ms after the Sync.
+CanRun run_can(TestBoard& b, int64_t from, int64_t to, int64_t period_ns, int64_t jitter_ns, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int64_t> jitter(0, jitter_ns);
+  CanRun run;
+  uint16_t seq = 0;
+  for (int64_t t = from; t < to; t += period_ns) {
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{seq}}, t + jitter(rng));
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{seq, t}}, t + kMs);
+    ++seq;
+    if (run.locked_at < 0 && b.sync_state() == SyncState::kLocked) run.locked_at = t;
+  }
+  b.board.advance_to(to);
+  return run;
+}
+
+protocol::Config can_config() {
+  protocol::Config c = edge_rich_config(1 * kMs);
+  c.sync_source = SyncSource::kCan;
+  return c;
+}
+
+class CanLock : public ::testing::TestWithParam<double> {};
+
+TEST_P(CanLock, LocksWithin5sAt100ppmWith50usJitter) {
+  const double ppm = GetParam();
+  TestBoard b(board_at(ppm, 77'000'001));
+  const int64_t start = 1 * kSecond;
+  b.board.advance_to(start - 100 * kMs);
+  b.configure(can_config());
+  const int64_t end = start + 40 * kSecond;
+  const CanRun run = run_can(b, start, end, 100 * kMs, 50'000, 7);
+  ASSERT_GE(run.locked_at, 0) << "never locked";
+  const double lock_s = static_cast<double>(run.locked_at - start) / 1e9;
+  const protocol::TimeBase tb{0, 1 * kMs};
+  const EdgeTiming after_lock = edge_timing(b.board, tb, run.locked_at, end);
+  const EdgeTiming steady = edge_timing(b.board, tb, start + 20 * kSecond, end);
+  std::printf("[measure] can %+.0f ppm, 10 Hz, jitter 0..50 us: lock %.2f s; after lock max |err| %.1f us;"
+              " steady (20-40 s) mean %.1f us, rms %.1f us, max |err| %.1f us\n",
+              ppm, lock_s, after_lock.max_abs_ns / 1e3, steady.mean_ns / 1e3, steady.rms_ns / 1e3,
+              steady.max_abs_ns / 1e3);
+  EXPECT_LT(lock_s, 5.0);
+  EXPECT_LT(steady.max_abs_ns, 20'000.0);
+  EXPECT_EQ(b.sync_state(), SyncState::kLocked);
+}
+
+INSTANTIATE_TEST_SUITE_P(ClockServo, CanLock, ::testing::Values(-100.0, -20.0, 0.0, 45.0, 100.0));
+
+}  // namespace
+}  // namespace tetrapulse::fw::testing
+
+namespace tetrapulse::fw::testing {
+namespace {
+
+// Largest shift of any LED change of any marker in [from, to) between two runs that
+// should have played the same edges.
+double max_shift_ns(const sim_board::SimBoard& a, const sim_board::SimBoard& b, int64_t from, int64_t to) {
+  double worst = 0;
+  for (uint8_t m = 0; m < kLedCount; ++m) {
+    const std::vector<long double> ta = change_times(a, m, from, to);
+    const std::vector<long double> tb = change_times(b, m, from, to);
+    if (ta.size() != tb.size()) return 1e18;  // an edge appeared or vanished
+    for (size_t i = 0; i < ta.size(); ++i) worst = std::max(worst, static_cast<double>(std::fabs(ta[i] - tb[i])));
+  }
+  return worst;
+}
+
+struct Disturbance {
+  const char* name;
+  int64_t skip_edge_at;   // -1: none
+  int64_t extra_edge_at;  // -1: none
+};
+
+class GpioOutlier : public ::testing::TestWithParam<std::tuple<Disturbance, GpioEdgeNumbering>> {};
+
+TEST_P(GpioOutlier, MovesNoLedEdgeBeyond5us) {
+  const auto [d, numbering] = GetParam();
+  const int64_t start = 1 * kSecond, end = start + 5 * kSecond;
+  TestBoard clean(board_at(100, 3'000'000));
+  TestBoard hit(board_at(100, 3'000'000));
+  for (TestBoard* b : {&clean, &hit}) {
+    b->board.advance_to(start - 300 * kMs);
+    b->configure(gpio_config(numbering));
+  }
+  run_gpio(clean, start, end);
+  run_gpio(hit, start, end, d.skip_edge_at, d.extra_edge_at);
+  const double shift = max_shift_ns(clean.board, hit.board, start + 2 * kSecond, end);
+  std::printf("[measure] gpio outlier %s (numbering %d): largest LED edge shift %.1f ns, state %d\n", d.name,
+              static_cast<int>(numbering), shift, static_cast<int>(hit.sync_state()));
+  EXPECT_LT(shift, 5'000.0);
+  EXPECT_EQ(hit.sync_state(), SyncState::kLocked);
+}
+
+constexpr int64_t kHitAt = 3 * kSecond;  // well after lock
+INSTANTIATE_TEST_SUITE_P(
+    ClockServo, GpioOutlier,
+    ::testing::Combine(::testing::Values(Disturbance{"missed edge", kHitAt, -1},
+                                         Disturbance{"doubled edge +3us", -1, kHitAt + 3'000},
+                                         Disturbance{"bounce +40us", -1, kHitAt + 40'000},
+                                         Disturbance{"spurious mid-period", -1, kHitAt + 5 * kMs},
+                                         Disturbance{"glitch 2us early", -1, kHitAt - 2'000},
+                                         Disturbance{"missed and doubled", kHitAt, kHitAt + 10 * kMs + 1'000}),
+                       ::testing::Values(GpioEdgeNumbering::kNearestCoarseTime, GpioEdgeNumbering::kCountAfterGap)));
+
+TEST(ClockServo, StaleOrUnpairedFollowUpNeverJumpsTheClock) {
+  const int64_t start = 1 * kSecond, end = start + 20 * kSecond;
+  TestBoard b(board_at(-80, 5'000'000));
+  b.board.advance_to(start - 100 * kMs);
+  b.configure(can_config());
+  run_can(b, start, start + 10 * kSecond, 100 * kMs, 50'000, 3);
+  const uint32_t rejected_before = b.board.status().sync_rejected;
+  const EdgeTiming before = edge_timing(b.board, protocol::TimeBase{0, kMs}, start + 8 * kSecond, start + 10 * kSecond);
+  // A FollowUp whose Sync was lost, a FollowUp repeated (stale), one for an old seq with a
+  // time 5 ms off, and a Sync/FollowUp pair whose tx time is 3 ms wrong (a master glitch).
+  const int64_t t = start + 10 * kSecond;
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{900, t}}, t + kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{901}}, t + 20 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{901, t + 20 * kMs}}, t + 21 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{901, t + 25 * kMs}}, t + 22 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{700, t + 30 * kMs}}, t + 31 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{902}}, t + 50 * kMs);
+  b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{902, t + 53 * kMs}}, t + 51 * kMs);
+  run_can(b, t + 100 * kMs, end, 100 * kMs, 50'000, 4);
+  const EdgeTiming after = edge_timing(b.board, protocol::TimeBase{0, kMs}, t, end);
+  const protocol::StatusReport s = b.board.status();
+  std::printf("[measure] can stale/unpaired FollowUps: max |err| before %.1f us, after %.1f us; rejected %u -> %u\n",
+              before.max_abs_ns / 1e3, after.max_abs_ns / 1e3, rejected_before, s.sync_rejected);
+  EXPECT_LT(after.max_abs_ns, 20'000.0);
+  EXPECT_GE(s.sync_rejected, rejected_before + 4);
+  EXPECT_EQ(s.sync_state, SyncState::kLocked);
+}
+
+// Holdover: locked on GPIO, then no more edges. Mean LED edge error in a 100 ms window
+// 1, 10 and 60 s after the last edge, with the crystal as it was and with it moved by a
+// few ppm (temperature) when sync stopped.
+class Holdover : public ::testing::TestWithParam<std::tuple<double, double>> {};
+
+TEST_P(Holdover, DriftsOnlyByTheResidualRate) {
+  const auto [ppm, residual_ppm] = GetParam();
+  TestBoard b(board_at(ppm, 1'000'000));
+  const int64_t start = kSecond;
+  b.board.advance_to(start - 100 * kMs);
+  b.configure(gpio_config(GpioEdgeNumbering::kCountAfterGap, 10 * kMs));
+  const int64_t last = start + 5 * kSecond;
+  run_gpio(b, start, last + kEdgePeriod);
+  const int64_t stop = last + kEdgePeriod;
+  if (residual_ppm != 0) b.board.set_clock_ppm(ppm + residual_ppm);
+  double at[3] = {0, 0, 0};
+  const int64_t marks[3] = {1 * kSecond, 10 * kSecond, 60 * kSecond};
+  for (int i = 0; i < 3; ++i) {
+    b.board.advance_to(last + marks[i] + 100 * kMs);
+    at[i] = edge_timing(b.board, protocol::TimeBase{0, 10 * kMs}, last + marks[i], last + marks[i] + 100 * kMs).mean_ns;
+  }
+  const protocol::StatusReport s = b.board.status();
+  std::printf("[measure] holdover %+.0f ppm crystal, %+.1f ppm change: error after 1 s %.3f us, 10 s %.3f us, 60 s %.3f us;"
+              " state %d holdover_ms %u\n",
+              ppm, residual_ppm, at[0] / 1e3, at[1] / 1e3, at[2] / 1e3, static_cast<int>(s.sync_state), s.holdover_ms);
+  EXPECT_EQ(s.sync_state, SyncState::kHoldover);
+  EXPECT_NEAR(static_cast<double>(s.holdover_ms), static_cast<double>(b.board.now() - stop) / 1e6, 50.0);
+  // The rate learned while locked is good to well under 0.1 ppm: the drift is what the
+  // crystal changed by, times the time without sync (plus that small residue).
+  for (int i = 0; i < 3; ++i) {
+    const double expected = -residual_ppm * 1e-6 * static_cast<double>(marks[i]);
+    EXPECT_NEAR(at[i], expected, 100.0 + 0.1e-6 * static_cast<double>(marks[i])) << "after " << marks[i] / kSecond << " s";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ClockServo, Holdover,
+                         ::testing::Values(std::make_tuple(100.0, 0.0), std::make_tuple(-100.0, 0.0),
+                                           std::make_tuple(100.0, 2.0), std::make_tuple(100.0, -5.0)));
+
+}  // namespace
+}  // namespace tetrapulse::fw::testing
+
+namespace tetrapulse::fw::testing {
+namespace {
+
+// Sync returns after holdover with the crystal moved: the board is locked again and its
+// edges are back within 1 us shortly after.
+TEST(ClockServo, RelocksAfterHoldoverWhenSyncReturns) {
+  for (const int64_t silence_s : {2, 10, 60}) {
+    TestBoard b(board_at(90, 2'000'000));
+    b.board.advance_to(kSecond - 100 * kMs);
+    b.configure(gpio_config(GpioEdgeNumbering::kNearestCoarseTime, 10 * kMs));
+    const int64_t stop = 4 * kSecond;
+    run_gpio(b, kSecond, stop);
+    b.board.set_clock_ppm(90 - 4);  // 4 ppm of temperature drift while sync is away
+    const int64_t back = stop + silence_s * kSecond;
+    b.board.advance_to(back);
+    EXPECT_EQ(b.sync_state(), SyncState::kHoldover);
+    const int64_t relocked = run_gpio(b, back, back + 3 * kSecond);
+    ASSERT_GE(relocked, 0) << silence_s << " s";
+    const EdgeTiming after = edge_timing(b.board, protocol::TimeBase{0, 10 * kMs}, relocked + 500 * kMs, back + 3 * kSecond);
+    std::printf("[measure] sync back after %lld s of holdover (4 ppm drift): locked again after %.2f s, then max |err| %.1f ns\n",
+                static_cast<long long>(silence_s), static_cast<double>(relocked - back) / 1e9, after.max_abs_ns);
+    EXPECT_LT(relocked - back, kSecond);
+    EXPECT_LT(after.max_abs_ns, 1000.0);
+  }
+}
+
+}  // namespace
+}  // namespace tetrapulse::fw::testing

@@ -1,0 +1,147 @@
+// The board commands (list, info, config, identify, status, flash, sync) as users run
+// them: the built binary against simulated boards (--board sim:N, the firmware core) and a
+// protocol responder on a pseudo-terminal; exit codes, one-line errors, JSON output.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "cli_run.hpp"
+#include "exit_codes.hpp"
+#include "pty_pair.hpp"
+#include "tetrapulse/sim_board/sim_image.hpp"
+#include "test_images.hpp"
+#include "uart_responder.hpp"
+
+namespace tetrapulse::cli {
+namespace {
+
+using testing::CliRun;
+using testing::CliTempDir;
+using testing::run_cli;
+
+void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                              static_cast<std::streamsize>(bytes.size()));
+}
+
+TEST(BoardCommands, InfoOfASimulatedBoard) {
+  CliTempDir dir("board");
+  const CliRun human = run_cli(dir, "info --board sim:5");
+  ASSERT_EQ(human.exit, kExitOk) << human.err;
+  EXPECT_NE(human.out.find("hardware: sim rev 1"), std::string::npos) << human.out;
+  EXPECT_NE(human.out.find("node id: 5"), std::string::npos) << human.out;
+  const CliRun json = run_cli(dir, "info --board sim:5 --json");
+  ASSERT_EQ(json.exit, kExitOk) << json.err;
+  EXPECT_EQ(json.out.rfind("{\"address\": \"sim:5\", \"hw_model\": \"sim\"", 0), 0u) << json.out;
+}
+
+TEST(BoardCommands, CodebookBoardFilesConfigureABoard) {
+  CliTempDir dir("board");
+  const CliRun codebook = run_cli(dir, "codebook --targets 2 --out '" + dir.path("targets.yaml") + "'");
+  ASSERT_EQ(codebook.exit, kExitOk) << codebook.err;
+  const std::string board_file = dir.path("boards/target-2.yaml");
+  ASSERT_TRUE(std::filesystem::exists(board_file)) << codebook.out;
+  const CliRun config = run_cli(dir, "config --board sim:2 --persist --file '" + board_file + "' --json");
+  ASSERT_EQ(config.exit, kExitOk) << config.err;
+  EXPECT_NE(config.out.find("\"verified\": true"), std::string::npos) << config.out;
+  EXPECT_NE(config.out.find("\"target_id\": 2"), std::string::npos) << config.out;
+  EXPECT_NE(config.out.find("\"sync_source\": \"can\""), std::string::npos) << config.out;
+}
+
+TEST(BoardCommands, BadInputIsOneLineAndTheDocumentedExitCode) {
+  CliTempDir dir("board");
+  const std::string broken = dir.file("broken.yaml", "node_id: 3\ncodes: [\"1101\", \"12\", \"\", \"\"]\n");
+  struct Case {
+    std::string args;
+    int exit;
+    std::string says;
+  };
+  for (const Case& c : {
+           Case{"info", kExitUsage, "say which board"},
+           Case{"info --board bluetooth:7", kExitUsage, "bluetooth:7: a board is usb:SERIAL"},
+           Case{"info --can vcan0", kExitUsage, "can:vcan0: expected IFACE:NODE"},
+           Case{"info --can tpnosuch0:3", kExitNoDevice, "can:tpnosuch0:3: no such network interface"},
+           Case{"info --serial /dev/tp-nosuch", kExitNoDevice, "serial:/dev/tp-nosuch: cannot open"},
+           Case{"config --board sim:1 --file '" + broken + "'", kExitBadInput, broken + ":2: codes[1]: '12'"},
+           Case{"config --board sim:1 --file /nonexistent/b.yaml", kExitBadInput, "/nonexistent/b.yaml"},
+           Case{"config --board sim:1 --code 4=1101", kExitUsage, "--code 4=1101: expected MARKER=BITS"},
+           Case{"config --board sim:1 --code 0=1102", kExitUsage, "'1102' character 4 is '2'"},
+           Case{"flash --board sim:1 /nonexistent/fw.bin", kExitBadInput, "/nonexistent/fw.bin: cannot read the file"},
+           Case{"flash --board sim:1 '" + dir.path("") + "'", kExitBadInput, "is a folder, not a file"},
+           Case{"config --board sim:1 --file '" + dir.path("") + "'", kExitBadInput, "is a folder, not a file"},
+           Case{"info --usb TPNOSUCH", kExitNoDevice, "usb:TPNOSUCH: no board"},
+           Case{"info --board sim:300", kExitUsage, "sim:300: node '300' is not a CAN node id 1..254"},
+           Case{"sync", kExitUsage, "give --trigger LINE, --strobe LINE and/or --can IFACE"},
+           Case{"sync --trigger gpiochip0:1", kExitUsage, "--out FILE"},
+           Case{"sync --can tpnosuch0 --count 1", kExitNoDevice, "no such network interface"},
+       }) {
+    const CliRun r = run_cli(dir, c.args);
+    EXPECT_EQ(r.exit, c.exit) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.err_lines(), 1u) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
+  }
+}
+
+TEST(BoardCommands, FlashUpdatesASimulatedBoardAndRefusesImagesThatDoNotFit) {
+  CliTempDir dir("board");
+  sim_board::SimImageSpec spec;
+  spec.fw_version = 0x01070002;
+  write_bytes(dir.path("sim-1.7.2.bin"), sim_board::make_sim_image(spec));
+  const CliRun flashed = run_cli(dir, "flash --board sim:1 --json '" + dir.path("sim-1.7.2.bin") + "'");
+  ASSERT_EQ(flashed.exit, kExitOk) << flashed.err;
+  EXPECT_NE(flashed.out.find("{\"stage\": \"write\""), std::string::npos) << flashed.out;
+  EXPECT_NE(flashed.out.find("\"running_version\": \"1.7.2\""), std::string::npos) << flashed.out;
+
+  write_bytes(dir.path("linux.bin"), host::testing::make_test_image(host::testing::TestImageSpec{}));
+  const CliRun refused = run_cli(dir, "flash --board sim:1 '" + dir.path("linux.bin") + "'");
+  EXPECT_EQ(refused.exit, kExitBadInput) << refused.err;
+  EXPECT_EQ(refused.err_lines(), 1u) << refused.err;
+  EXPECT_NE(refused.err.find("built for linux rev 0..255, the board is sim rev 1"), std::string::npos) << refused.err;
+
+  dir.file("text.bin", "not firmware at all, just text");
+  const CliRun text = run_cli(dir, "flash --board sim:1 '" + dir.path("text.bin") + "'");
+  EXPECT_EQ(text.exit, kExitBadInput);
+  EXPECT_NE(text.err.find("not a tetrapulse firmware image"), std::string::npos) << text.err;
+}
+
+TEST(BoardCommands, StatusWatchAndIdentify) {
+  CliTempDir dir("board");
+  const CliRun watch = run_cli(dir, "status --board sim:1 --watch --count 3 --interval-ms 10 --json");
+  ASSERT_EQ(watch.exit, kExitOk) << watch.err;
+  EXPECT_EQ(std::count(watch.out.begin(), watch.out.end(), '\n'), 3) << watch.out;
+  EXPECT_NE(watch.out.find("\"update_state\": \"idle\""), std::string::npos) << watch.out;
+  const CliRun identify = run_cli(dir, "identify --board sim:1 --pattern chase --duration-ms 100");
+  ASSERT_EQ(identify.exit, kExitOk) << identify.err;
+  EXPECT_EQ(identify.out, "sim:1: identify chase for 100 ms\n");
+}
+
+TEST(BoardCommands, ListAndInfoOverASerialLine) {
+  host::testing::PtyPair pty;
+  ASSERT_TRUE(pty.ok());
+  host::testing::UartResponder responder(pty.master());
+  CliTempDir dir("board");
+  const CliRun list = run_cli(dir, "list --no-usb --serial " + pty.device() + ":230400");
+  ASSERT_EQ(list.exit, kExitOk) << list.err;
+  EXPECT_NE(list.out.find("serial:" + pty.device() + ":230400"), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find("linux rev 1, firmware 1.0.0"), std::string::npos) << list.out;
+  const CliRun none = run_cli(dir, "list --no-usb");
+  EXPECT_EQ(none.exit, kExitNoDevice);
+  const CliRun status = run_cli(dir, "status --serial " + pty.device());
+  ASSERT_EQ(status.exit, kExitOk) << status.err;
+  EXPECT_EQ(status.out.rfind("serial:" + pty.device() + ": sync free-running (none)", 0), 0u) << status.out;
+}
+
+TEST(BoardCommands, EveryCommandHasHelp) {
+  CliTempDir dir("board");
+  for (const char* command : {"list", "info", "config", "identify", "status", "flash", "sync"}) {
+    const CliRun help = run_cli(dir, std::string(command) + " --help");
+    EXPECT_EQ(help.exit, kExitOk) << command;
+    EXPECT_NE(help.out.find("Usage:"), std::string::npos) << command;
+  }
+  const CliRun config = run_cli(dir, "config --help");
+  EXPECT_NE(config.out.find("--can IFACE:NODE"), std::string::npos) << "addressing is explained";
+  EXPECT_NE(config.out.find("--gpio-edge-numbering"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tetrapulse::cli
