@@ -10,7 +10,7 @@
 #include "fake_can_bus.hpp"
 #include "tetrapulse/host/board.hpp"
 #include "tetrapulse/host/can_link.hpp"
-#include "vector_file.hpp"
+#include "transport_vectors.hpp"
 
 namespace tetrapulse::host {
 namespace {
@@ -28,21 +28,15 @@ struct CanVector {
 
 std::vector<CanVector> can_vectors() {
   std::vector<CanVector> out;
-  auto files = protocol::testing::read_vector_dir(protocol::testing::vectors_dir("can"));
-  EXPECT_TRUE(files.has_value());
+  auto files = protocol::testing::read_vectors("can");
+  EXPECT_TRUE(files.has_value()) << (files ? "" : files.error());
   if (!files) return out;
   for (const auto& f : *files) {
-    const auto* t = f.first("transfer");
-    CanVector v{f.path, f.first("message")->bytes, static_cast<uint8_t>(t->fields.at("priority")),
-                static_cast<uint8_t>(t->fields.at("source")), static_cast<uint8_t>(t->fields.at("destination")),
-                static_cast<uint8_t>(t->fields.at("transfer_id")), {}};
-    for (const auto* r : f.all("frame")) {
-      protocol::CanFrame frame;
-      frame.id = static_cast<uint32_t>(r->fields.at("id"));
-      for (uint8_t b : r->bytes) frame.data[frame.size++] = b;
-      v.frames.push_back(frame);
-    }
-    out.push_back(v);
+    const auto v = protocol::testing::can_transfer_vector(f);
+    EXPECT_TRUE(v.has_value()) << (v ? "" : v.error());
+    if (!v) continue;
+    const protocol::CanTransferHeader& h = v->header;
+    out.push_back(CanVector{v->path, v->message, h.priority, h.source, h.destination, h.transfer_id, v->frames});
   }
   return out;
 }

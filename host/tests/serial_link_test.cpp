@@ -7,7 +7,7 @@
 #include <random>
 
 #include "pty_pair.hpp"
-#include "transport_vectors.hpp"
+#include "wire_vectors.hpp"
 #include "tetrapulse/host/board.hpp"
 #include "tetrapulse/host/serial_link.hpp"
 #include "uart_responder.hpp"

@@ -5,23 +5,27 @@
 
 #include "tetrapulse/host/usb_layout.hpp"
 #include "tetrapulse/protocol/usb_descriptors.hpp"
-#include "vector_file.hpp"
+#include "transport_vectors.hpp"
 
 namespace tetrapulse::host {
 namespace {
 
 using Bytes = std::vector<uint8_t>;
 
+// The configuration descriptor of vectors/usb/<name>.hex.
 Bytes configuration_vector(const std::string& name) {
-  auto f = protocol::testing::read_vector_file(protocol::testing::vectors_dir("usb") + "/" + name);
-  EXPECT_TRUE(f.has_value());
-  return f ? f->first("configuration")->bytes : Bytes{};
+  auto files = protocol::testing::read_vectors("usb", name);
+  EXPECT_TRUE(files.has_value()) << (files ? "" : files.error());
+  if (!files) return {};
+  const auto v = protocol::testing::usb_descriptor_vector(files->front());
+  EXPECT_TRUE(v.has_value()) << (v ? "" : v.error());
+  return v ? v->configuration : Bytes{};
 }
 
 HostResult<UsbLayout> parse(const Bytes& b) { return parse_usb_layout(protocol::ByteView{b.data(), b.size()}); }
 
 TEST(UsbLayout, ApplicationHasMessagesAndDfuRuntime) {
-  auto layout = parse(configuration_vector("descriptors_application.txt"));
+  auto layout = parse(configuration_vector("descriptors_application"));
   ASSERT_TRUE(layout) << layout.error().what();
   ASSERT_TRUE(layout->messages);
   EXPECT_EQ(layout->messages->number, 0);
@@ -39,7 +43,7 @@ TEST(UsbLayout, ApplicationHasMessagesAndDfuRuntime) {
 }
 
 TEST(UsbLayout, BootloaderIsDfuModeOnly) {
-  auto layout = parse(configuration_vector("descriptors_bootloader.txt"));
+  auto layout = parse(configuration_vector("descriptors_bootloader"));
   ASSERT_TRUE(layout) << layout.error().what();
   EXPECT_FALSE(layout->messages);
   ASSERT_TRUE(layout->dfu);
@@ -50,7 +54,7 @@ TEST(UsbLayout, BootloaderIsDfuModeOnly) {
 }
 
 TEST(UsbLayout, Linux61GadgetHasNoFunctionalDescriptor) {
-  auto layout = parse(configuration_vector("descriptors_gadget_linux61.txt"));
+  auto layout = parse(configuration_vector("descriptors_gadget_linux61"));
   ASSERT_TRUE(layout) << layout.error().what();
   ASSERT_TRUE(layout->messages);
   ASSERT_TRUE(layout->dfu);
@@ -71,7 +75,7 @@ TEST(UsbLayout, EndpointAddressesAreReadNotAssumed) {
 }
 
 TEST(UsbLayout, EveryTruncationIsRefused) {
-  const Bytes whole = configuration_vector("descriptors_application.txt");
+  const Bytes whole = configuration_vector("descriptors_application");
   for (size_t n = 0; n < whole.size(); ++n) {
     Bytes cut(whole.begin(), whole.begin() + static_cast<long>(n));
     if (n >= 4) {  // keep wTotalLength honest so the descriptor walk itself is tested
@@ -88,7 +92,7 @@ TEST(UsbLayout, EveryTruncationIsRefused) {
 }
 
 TEST(UsbLayout, ZeroLengthDescriptorIsRefused) {
-  Bytes b = configuration_vector("descriptors_application.txt");
+  Bytes b = configuration_vector("descriptors_application");
   b[9] = 0;  // interface 0's bLength
   auto layout = parse(b);
   ASSERT_FALSE(layout);
@@ -96,7 +100,7 @@ TEST(UsbLayout, ZeroLengthDescriptorIsRefused) {
 }
 
 RC_GTEST_PROP(UsbLayout, AnyBytesGiveALayoutOrAnError, (std::vector<uint8_t> tail)) {
-  Bytes b = configuration_vector("descriptors_application.txt");
+  Bytes b = configuration_vector("descriptors_application");
   b.resize(9);
   b.insert(b.end(), tail.begin(), tail.end());
   b[2] = static_cast<uint8_t>(b.size());

@@ -9,7 +9,7 @@
 #include "tetrapulse/host/board.hpp"
 #include "tetrapulse/host/usb_link.hpp"
 #include "tetrapulse/protocol/usb_bulk_frame.hpp"
-#include "transport_vectors.hpp"
+#include "wire_vectors.hpp"
 
 namespace tetrapulse::host {
 namespace {

@@ -8,6 +8,8 @@
 // kCanFuzzTimeStepNs.
 // USB packet stream: records of [size u8][packet], the size taken modulo 66 so that
 // 65 (one byte over a full-speed packet) also occurs.
+// USB control stream (MESSAGE_OUT): records as the packet stream, except that a record
+// whose first byte is kUsbSetupRecord is a setup stage: wLength u16 LE follows.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -54,6 +56,32 @@ inline bool next_usb_packet(const uint8_t* data, size_t size, size_t* pos, const
 inline void append_usb_packet(const uint8_t* packet, size_t length, std::vector<uint8_t>* out) {
   out->push_back(static_cast<uint8_t>(length));
   out->insert(out->end(), packet, packet + length);
+}
+
+constexpr uint8_t kUsbSetupRecord = 0xFF;
+
+struct UsbControlRecord {
+  bool setup = false;
+  uint16_t w_length = 0;            // setup
+  const uint8_t* packet = nullptr;  // data-stage packet
+  size_t length = 0;
+};
+
+// Reads the next USB control record at `*pos`; false at the end (or a setup cut short).
+inline bool next_usb_control_record(const uint8_t* data, size_t size, size_t* pos, UsbControlRecord* r) {
+  if (*pos >= size) return false;
+  r->setup = data[*pos] == kUsbSetupRecord;
+  if (!r->setup) return next_usb_packet(data, size, pos, &r->packet, &r->length);
+  if (size - *pos < 3) return false;
+  r->w_length = static_cast<uint16_t>(data[*pos + 1] | (data[*pos + 2] << 8));
+  *pos += 3;
+  return true;
+}
+
+inline void append_usb_setup(uint16_t w_length, std::vector<uint8_t>* out) {
+  out->push_back(kUsbSetupRecord);
+  out->push_back(static_cast<uint8_t>(w_length));
+  out->push_back(static_cast<uint8_t>(w_length >> 8));
 }
 
 }  // namespace tetrapulse::protocol::fuzz

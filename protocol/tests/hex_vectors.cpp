@@ -22,13 +22,73 @@ std::string trim(const std::string& s) {
   return s.substr(begin, s.find_last_not_of(" \t\r") - begin + 1);
 }
 
+bool valid_key(const std::string& key) {
+  return !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+    return std::islower(static_cast<unsigned char>(c)) != 0 || std::isdigit(static_cast<unsigned char>(c)) != 0 ||
+           c == '_';
+  });
+}
+
+// Adds the tokens of one line (bytes and attributes) to `record`; an error says what is wrong.
+std::string add_tokens(const std::string& content, HexRecord* record) {
+  std::istringstream tokens(content);
+  std::string token;
+  while (tokens >> token) {
+    const auto eq = token.find('=');
+    if (eq != std::string::npos) {
+      const std::string key = token.substr(0, eq);
+      if (!valid_key(key) || eq + 1 == token.size()) return "'" + token + "' is not key=value";
+      if (!record->attributes.emplace(key, token.substr(eq + 1)).second) return "attribute " + key + " repeated";
+      continue;
+    }
+    if (token.size() % 2 != 0) return "'" + token + "' has an odd number of hex digits";
+    for (size_t i = 0; i < token.size(); i += 2) {
+      const int hi = hex_digit(token[i]);
+      const int lo = hex_digit(token[i + 1]);
+      if (hi < 0 || lo < 0) return "'" + token + "' is not hex";
+      record->bytes.push_back(static_cast<uint8_t>(hi * 16 + lo));
+    }
+  }
+  return {};
+}
+
 }  // namespace
+
+const std::string* HexRecord::attribute(const std::string& key) const {
+  const auto it = attributes.find(key);
+  return it == attributes.end() ? nullptr : &it->second;
+}
+
+tl::expected<uint64_t, std::string> HexRecord::number(const std::string& key) const {
+  const std::string* text = attribute(key);
+  if (text == nullptr) return tl::make_unexpected(origin + ": [" + name + "] has no " + key + "=");
+  const bool hex = text->size() > 2 && (*text)[0] == '0' && ((*text)[1] == 'x' || (*text)[1] == 'X');
+  const std::string digits = hex ? text->substr(2) : *text;
+  uint64_t value = 0;
+  for (char c : digits) {
+    const int d = hex ? hex_digit(c) : (std::isdigit(static_cast<unsigned char>(c)) != 0 ? c - '0' : -1);
+    const uint64_t base = hex ? 16 : 10;
+    if (d < 0 || value > (UINT64_MAX - static_cast<uint64_t>(d)) / base) {
+      return tl::make_unexpected(origin + ": [" + name + "] " + key + "=" + *text + " is not a 64-bit number");
+    }
+    value = value * base + static_cast<uint64_t>(d);
+  }
+  return value;
+}
 
 const HexRecord* HexFile::find(const std::string& name) const {
   for (const HexRecord& r : records) {
     if (r.name == name) return &r;
   }
   return nullptr;
+}
+
+std::vector<const HexRecord*> HexFile::starting_with(const std::string& prefix) const {
+  std::vector<const HexRecord*> out;
+  for (const HexRecord& r : records) {
+    if (r.name.compare(0, prefix.size(), prefix) == 0) out.push_back(&r);
+  }
+  return out;
 }
 
 tl::expected<HexFile, std::string> read_hex_file(const std::string& path) {
@@ -38,41 +98,35 @@ tl::expected<HexFile, std::string> read_hex_file(const std::string& path) {
   file.path = path;
   file.stem = std::filesystem::path(path).stem().string();
   // The unnamed first record exists until a [name] shows it was only a file comment.
-  file.records.push_back(HexRecord{file.stem, {}, {}, path + ":1"});
+  file.records.push_back(HexRecord{file.stem, {}, {}, {}, path + ":1"});
+  bool unnamed = true;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
     const std::string where = path + ":" + std::to_string(number);
     const std::string text = trim(line);
-    const auto hash = line.find('#');
     if (!text.empty() && text[0] == '#') {
       std::string& d = file.records.back().description;
       d += (d.empty() ? "" : "\n") + trim(text.substr(1));
       continue;
     }
-    const std::string content = trim(line.substr(0, hash));
+    std::string content = trim(line.substr(0, line.find('#')));
     if (content.empty()) continue;
     if (content.front() == '[') {
-      if (content.back() != ']' || content.size() < 3) {
-        return tl::make_unexpected(where + ": a record name is written [name]");
-      }
-      const std::string name = content.substr(1, content.size() - 2);
+      const auto close = content.find(']');
+      if (close == std::string::npos || close < 2) return tl::make_unexpected(where + ": a record name is written [name]");
+      const std::string name = content.substr(1, close - 1);
       if (file.find(name) != nullptr) return tl::make_unexpected(where + ": record [" + name + "] repeated");
       // A file that starts with named records: its leading comments were not a record.
-      if (file.records.size() == 1 && file.records[0].bytes.empty()) file.records.clear();
-      file.records.push_back(HexRecord{name, {}, {}, where});
-      continue;
-    }
-    std::istringstream tokens(content);
-    std::string token;
-    while (tokens >> token) {
-      if (token.size() % 2 != 0) return tl::make_unexpected(where + ": '" + token + "' has an odd number of hex digits");
-      for (size_t i = 0; i < token.size(); i += 2) {
-        const int hi = hex_digit(token[i]);
-        const int lo = hex_digit(token[i + 1]);
-        if (hi < 0 || lo < 0) return tl::make_unexpected(where + ": '" + token + "' is not hex");
-        file.records.back().bytes.push_back(static_cast<uint8_t>(hi * 16 + lo));
+      if (unnamed && file.records.front().bytes.empty() && file.records.front().attributes.empty()) {
+        file.description = file.records.front().description;
+        file.records.clear();
       }
+      unnamed = false;
+      file.records.push_back(HexRecord{name, {}, {}, {}, where});
+      content = content.substr(close + 1);
     }
+    const std::string error = add_tokens(content, &file.records.back());
+    if (!error.empty()) return tl::make_unexpected(where + ": " + error);
   }
   return file;
 }

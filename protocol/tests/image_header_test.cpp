@@ -146,7 +146,7 @@ class MalformedImageHeader : public ::testing::TestWithParam<VectorCase> {};
 TEST_P(MalformedImageHeader, FailsWithTheNamedError) {
   const VectorCase& c = GetParam();
   ASSERT_EQ(c.load_error, "");
-  const Error expected = expected_error(c.record.name);
+  const Error expected = expected_error(c.record);
   ASSERT_NE(expected, Error::kNone) << c.record.origin;
   EXPECT_EQ(decode_image_header(view(c.record.bytes)).error(), expected)
       << c.record.origin << " (" << c.record.description << ")";

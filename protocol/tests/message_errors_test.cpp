@@ -94,6 +94,59 @@ TEST(MessageDecode, ReportsTheFirstErrorInSpecOrder) {
   EXPECT_EQ(decode_error(bad_version_and_type), Error::kBadVersion);
 }
 
+std::vector<uint8_t> chunk_bytes(uint16_t length_field, size_t data_bytes) {
+  std::vector<uint8_t> b = {kProtocolVersion, static_cast<uint8_t>(MessageType::kUpdateChunk), 1, 0, 0, 0, 0,
+                            static_cast<uint8_t>(length_field), static_cast<uint8_t>(length_field >> 8)};
+  b.resize(b.size() + data_bytes, 0xA5);
+  return b;
+}
+
+// Where decoding stopped, as ErrorResponse.detail reports it (SPEC.md §3).
+size_t stopped_at(const std::vector<uint8_t>& bytes, Error expected) {
+  size_t at = 9999;
+  EXPECT_EQ(decode(view(bytes), &at).error(), expected);
+  return at;
+}
+
+TEST(MessageDecode, StopsAtTheOffsetErrorResponseDetailReports) {
+  const auto identify = golden("identify");  // 01 05 05 | pattern | duration_ms (2 bytes)
+  auto bad_version = identify;
+  bad_version[0] = 2;
+  EXPECT_EQ(stopped_at(bad_version, Error::kBadVersion), 0u);
+  EXPECT_EQ(stopped_at({}, Error::kTruncated), 0u);
+  EXPECT_EQ(stopped_at({1}, Error::kTruncated), 1u);
+  EXPECT_EQ(stopped_at({1, 0x3F}, Error::kUnknownMessage), 1u);
+  EXPECT_EQ(stopped_at({1, 0x05}, Error::kTruncated), 2u);
+  // Cut inside duration_ms: the field that runs past the end starts at 4.
+  EXPECT_EQ(stopped_at({identify.begin(), identify.end() - 1}, Error::kTruncated), 4u);
+  auto bad_pattern = identify;
+  bad_pattern[3] = 9;
+  EXPECT_EQ(stopped_at(bad_pattern, Error::kBadValue), identify.size());
+  auto longer = identify;
+  longer.push_back(0);
+  EXPECT_EQ(stopped_at(longer, Error::kTrailingBytes), identify.size());
+  // UpdateChunk: 3 envelope + offset (4) + length (2); a count the data disagrees with.
+  EXPECT_EQ(stopped_at(chunk_bytes(5, 4), Error::kBadLength), 9u);
+  EXPECT_EQ(stopped_at(chunk_bytes(300, 300), Error::kBadLength), 9u);
+  EXPECT_EQ(stopped_at(chunk_bytes(0, 0), Error::kBadLength), 9u);  // length 0: a value check at the end
+  // Success leaves it alone.
+  size_t untouched = 77;
+  EXPECT_TRUE(decode(view(identify), &untouched).ok());
+  EXPECT_EQ(untouched, 77u);
+}
+
+// Every cut of every golden message stops inside the bytes it was given.
+TEST(MessageDecode, StopsWithinTheInputForEveryCut) {
+  for (const auto& [key, message] : golden_messages()) {
+    const auto bytes = encode_bytes(message);
+    for (size_t n = 0; n < bytes.size(); ++n) {
+      size_t at = 9999;
+      EXPECT_FALSE(decode(ByteView{bytes.data(), n}, &at).ok());
+      EXPECT_LE(at, n) << key << " cut to " << n;
+    }
+  }
+}
+
 // One byte of a golden message swept over 0..255: decodes exactly when `valid` says so,
 // else fails with `error`.
 struct FieldSweep {
@@ -166,13 +219,6 @@ TEST(MessageDecode, CodeBitsBeyondTheLengthAreRefused) {
   auto too_long = base;
   too_long[kCode0] = 65;
   EXPECT_EQ(decode_error(too_long), Error::kBadValue);
-}
-
-std::vector<uint8_t> chunk_bytes(uint16_t length_field, size_t data_bytes) {
-  std::vector<uint8_t> b = {kProtocolVersion, static_cast<uint8_t>(MessageType::kUpdateChunk), 1, 0, 0, 0, 0,
-                            static_cast<uint8_t>(length_field), static_cast<uint8_t>(length_field >> 8)};
-  b.resize(b.size() + data_bytes, 0xA5);
-  return b;
 }
 
 TEST(MessageDecode, ChunkLengthMustBe1To256AndMatchTheData) {

@@ -1,9 +1,13 @@
 #pragma once
-// rapidcheck generators of valid protocol messages: every field anywhere in its range.
+// rapidcheck generators of valid protocol messages: every field anywhere in its range;
+// and the message types as GoogleTest typed-test parameters.
+#include <gtest/gtest.h>
 #include <rapidcheck.h>
 
 #include <cstdint>
+#include <string>
 #include <variant>
+#include <vector>
 
 #include "tetrapulse/protocol/limits.hpp"
 #include "tetrapulse/protocol/message.hpp"
@@ -20,11 +24,45 @@ rc::Gen<E> enum_up_to(E last) {
 
 inline rc::Gen<uint8_t> node_id_gen() { return rc::gen::inRange<uint8_t>(1, 255); }
 
+// Every Body alternative, for TYPED_TEST_SUITE(Suite, BodyTypes, BodyTypeName).
+template <class V>
+struct TypesOf;
+template <class... Ts>
+struct TypesOf<std::variant<Ts...>> {
+  using type = ::testing::Types<Ts...>;
+};
+using BodyTypes = TypesOf<Body>::type;
+
+// Typed tests named after the message ("identify"), not a number.
+struct BodyTypeName {
+  template <class T>
+  static std::string GetName(int) {
+    return message_name(T::kType);
+  }
+};
+
 // Body alternative I as a Body.
 template <size_t... I>
 rc::Gen<Body> body_gen(std::index_sequence<I...>) {
   return rc::gen::oneOf(rc::gen::cast<Body>(rc::gen::arbitrary<std::variant_alternative_t<I, Body>>())...);
 }
+
+// Random bodies of type `t` (a Body alternative's kType); of the first alternative otherwise.
+template <size_t I = 0>
+rc::Gen<Body> body_of_type(MessageType t) {
+  using T = std::variant_alternative_t<I, Body>;
+  if constexpr (I + 1 < std::variant_size_v<Body>) {
+    if (T::kType != t) return body_of_type<I + 1>(t);
+  }
+  return rc::gen::cast<Body>(rc::gen::arbitrary<T>());
+}
+
+// The type of every Body alternative, in Body's order.
+template <size_t... I>
+std::vector<MessageType> body_types(std::index_sequence<I...>) {
+  return {std::variant_alternative_t<I, Body>::kType...};
+}
+inline std::vector<MessageType> body_types() { return body_types(std::make_index_sequence<std::variant_size_v<Body>>()); }
 
 }  // namespace tetrapulse::protocol::testing
 

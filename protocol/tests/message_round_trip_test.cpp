@@ -3,31 +3,15 @@
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
 
-#include <variant>
-
 #include "message_generators.hpp"
 #include "message_testing.hpp"
 
 namespace tetrapulse::protocol::testing {
 namespace {
 
-template <class V>
-struct TypesOf;
-template <class... Ts>
-struct TypesOf<std::variant<Ts...>> {
-  using type = ::testing::Types<Ts...>;
-};
-
-struct BodyName {
-  template <class T>
-  static std::string GetName(int) {
-    return message_name(T::kType);
-  }
-};
-
 template <class T>
 class MessageRoundTrip : public ::testing::Test {};
-TYPED_TEST_SUITE(MessageRoundTrip, TypesOf<Body>::type, BodyName);
+TYPED_TEST_SUITE(MessageRoundTrip, BodyTypes, BodyTypeName);
 
 TYPED_TEST(MessageRoundTrip, RandomFieldsSurviveEncodeDecodeEncode) {
   const bool ok = rc::check(message_name(TypeParam::kType), [](uint8_t seq, const TypeParam& body) {

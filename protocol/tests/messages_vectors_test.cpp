@@ -1,6 +1,6 @@
 // The golden vectors of protocol/vectors/messages decode to the messages their comments
 // describe and re-encode to the same bytes; every malformed vector fails with the Error
-// its name gives.
+// its error= attribute names.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -53,8 +53,8 @@ class MalformedMessage : public ::testing::TestWithParam<VectorCase> {};
 TEST_P(MalformedMessage, FailsWithTheNamedError) {
   const VectorCase& c = GetParam();
   ASSERT_EQ(c.load_error, "");
-  const Error expected = expected_error(c.record.name);
-  ASSERT_NE(expected, Error::kNone) << c.record.origin << ": the record name does not start with an error name";
+  const Error expected = expected_error(c.record);
+  ASSERT_NE(expected, Error::kNone) << c.record.origin << ": the record has no error=<name> of a defined Error";
   const auto decoded = decode(view(c.record.bytes));
   EXPECT_EQ(decoded.error(), expected) << c.record.origin << " (" << c.record.description << "): got "
                                        << error_name(decoded.error());

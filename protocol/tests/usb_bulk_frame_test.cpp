@@ -6,8 +6,12 @@
 #include <random>
 #include <vector>
 
+#include "transport_testing.hpp"
+
 namespace tetrapulse::protocol {
 namespace {
+
+using testing::usb_packets;
 
 using Bytes = std::vector<uint8_t>;
 
@@ -23,17 +27,6 @@ Bytes transfer_of(const Bytes& m) {
   EXPECT_TRUE(n.ok());
   out.resize(n.ok() ? *n : 0);
   return out;
-}
-
-// What the bus carries for one transfer: 64-byte packets, the last one short (maybe empty).
-std::vector<Bytes> packets_of(const Bytes& transfer) {
-  std::vector<Bytes> packets;
-  for (size_t at = 0; at <= transfer.size(); at += kUsbMaxPacketSize) {
-    const size_t n = std::min<size_t>(kUsbMaxPacketSize, transfer.size() - at);
-    packets.emplace_back(transfer.begin() + static_cast<long>(at), transfer.begin() + static_cast<long>(at + n));
-    if (n < kUsbMaxPacketSize) break;
-  }
-  return packets;
 }
 
 struct Received {
@@ -67,7 +60,7 @@ TEST(UsbBulkFrame, PacketBoundaries) {
     ASSERT_EQ(t.size(), c.transfer);
     EXPECT_EQ(t[0] | (t[1] << 8), static_cast<int>(c.message));
     EXPECT_EQ(usb_bulk_needs_zlp(t.size()), c.zlp) << c.message;
-    const auto packets = packets_of(t);
+    const auto packets = usb_packets(t);
     EXPECT_EQ(packets.size(), c.packets) << c.message;
     EXPECT_EQ(usb_bulk_packet_count(t.size()), c.packets) << c.message;
     EXPECT_EQ(packets.back().empty(), c.zlp);
@@ -88,7 +81,7 @@ TEST(UsbBulkFrame, EveryLengthRoundTrips) {
     const Result<ByteView> whole = decode_usb_bulk_frame(ByteView{t.data(), t.size()});
     ASSERT_TRUE(whole.ok());
     EXPECT_EQ(Bytes(whole->begin(), whole->end()), m);
-    const Received r = push(rx, packets_of(t));
+    const Received r = push(rx, usb_packets(t));
     ASSERT_EQ(r.messages.size(), 1u) << size;
     EXPECT_EQ(r.messages[0], m);
   }
@@ -98,7 +91,7 @@ RC_GTEST_PROP(UsbBulkFrame, RandomMessagesRoundTrip, ()) {
   const auto size = *rc::gen::inRange<size_t>(3, kMaxMessageSize + 1);
   const auto m = *rc::gen::container<Bytes>(size, rc::gen::arbitrary<uint8_t>());
   UsbBulkFrameReceiver rx;
-  const Received r = push(rx, packets_of(transfer_of(m)));
+  const Received r = push(rx, usb_packets(transfer_of(m)));
   RC_ASSERT(r.messages.size() == 1u);
   RC_ASSERT(r.messages[0] == m);
 }
@@ -128,12 +121,12 @@ TEST(UsbBulkFrame, EncodeRefusesBadInput) {
 TEST(UsbBulkFrame, MissingZlpCostsTwoTransfersThenResynchronises) {
   std::mt19937 rng(2);
   const Bytes a = random_message(rng, 62), b = random_message(rng, 10), c = random_message(rng, 100);
-  auto pa = packets_of(transfer_of(a));
+  auto pa = usb_packets(transfer_of(a));
   ASSERT_TRUE(pa.back().empty());
   pa.pop_back();  // the sender forgot the ZLP: a and b run together
   std::vector<Bytes> stream = pa;
-  for (const auto& p : packets_of(transfer_of(b))) stream.push_back(p);
-  for (const auto& p : packets_of(transfer_of(c))) stream.push_back(p);
+  for (const auto& p : usb_packets(transfer_of(b))) stream.push_back(p);
+  for (const auto& p : usb_packets(transfer_of(c))) stream.push_back(p);
   UsbBulkFrameReceiver rx;
   const Received r = push(rx, stream);
   EXPECT_EQ(r.errors, std::vector<Error>{Error::kBadLength});
@@ -146,7 +139,7 @@ TEST(UsbBulkFrame, OverlongTransferIsReportedOnceAndSkipped) {
   std::vector<Bytes> stream(7, Bytes(64, 0xAA));  // 448 bytes with no short packet yet
   stream.push_back(Bytes(10, 0xAA));
   const Bytes m = random_message(rng, 5);
-  for (const auto& p : packets_of(transfer_of(m))) stream.push_back(p);
+  for (const auto& p : usb_packets(transfer_of(m))) stream.push_back(p);
   UsbBulkFrameReceiver rx;
   const Received r = push(rx, stream);
   EXPECT_EQ(r.errors, std::vector<Error>{Error::kBadLength});

@@ -17,6 +17,23 @@ std::vector<VectorCase> vector_cases(const std::string& subfolder) {
   return cases;
 }
 
+std::vector<uint8_t> record_bytes(const HexFile& file, const std::string& name) {
+  const HexRecord* r = file.find(name);
+  EXPECT_NE(r, nullptr) << file.path << " has no [" << name << "]";
+  return r != nullptr ? r->bytes : std::vector<uint8_t>{};
+}
+
+uint64_t record_number(const HexFile& file, const std::string& name, const std::string& key) {
+  const HexRecord* r = file.find(name);
+  if (r == nullptr) {
+    ADD_FAILURE() << file.path << " has no [" << name << "]";
+    return 0;
+  }
+  const auto v = r->number(key);
+  EXPECT_TRUE(v.has_value()) << v.error();
+  return v.value_or(0);
+}
+
 std::string case_name(const ::testing::TestParamInfo<VectorCase>& info) {
   std::string name = info.param.key;
   for (char& c : name) {
@@ -25,10 +42,10 @@ std::string case_name(const ::testing::TestParamInfo<VectorCase>& info) {
   return name;
 }
 
-Error expected_error(const std::string& record_name) {
-  const std::string prefix = record_name.substr(0, record_name.find('.'));
-  for (int e = 1; e < 256; ++e) {
-    if (prefix == error_name(static_cast<Error>(e))) return static_cast<Error>(e);
+Error expected_error(const HexRecord& record) {
+  const std::string* name = record.attribute("error");
+  for (int e = 1; name != nullptr && e < 256; ++e) {
+    if (*name == error_name(static_cast<Error>(e))) return static_cast<Error>(e);
   }
   return Error::kNone;
 }

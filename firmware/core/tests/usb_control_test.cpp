@@ -15,7 +15,7 @@
 #include "tetrapulse/protocol/usb_bulk_frame.hpp"
 #include "tetrapulse/protocol/usb_device.hpp"
 #include "usb_test_host.hpp"
-#include "vector_file.hpp"
+#include "transport_vectors.hpp"
 
 namespace tetrapulse::fw::testing {
 namespace {
@@ -70,21 +70,6 @@ class NoDetach final : public DfuRuntimeTarget {
   void do_detach() override {}
 };
 
-tp::UsbDeviceParams params_from(const tp::testing::VectorRecord& r) {
-  tp::UsbDeviceParams p;
-  p.mode = r.fields.at("bootloader") != 0 ? tp::UsbMode::kBootloader : tp::UsbMode::kApplication;
-  p.bcd_device = static_cast<uint16_t>(r.fields.at("bcd_device"));
-  p.max_power_2ma = static_cast<uint8_t>(r.fields.at("max_power_2ma"));
-  p.self_powered = r.fields.at("self_powered") != 0;
-  p.bulk_out_address = static_cast<uint8_t>(r.fields.at("bulk_out"));
-  p.bulk_in_address = static_cast<uint8_t>(r.fields.at("bulk_in"));
-  p.dfu_attributes = static_cast<uint8_t>(r.fields.at("dfu_attributes"));
-  p.dfu_detach_timeout_ms = static_cast<uint16_t>(r.fields.at("detach_timeout_ms"));
-  p.dfu_transfer_size = static_cast<uint16_t>(r.fields.at("transfer_size"));
-  p.dfu_functional_descriptor = r.fields.at("dfu_functional") != 0;
-  return p;
-}
-
 struct AppDevice {
   explicit AppDevice(const tp::UsbDeviceParams& p = tp::UsbDeviceParams{})
       : params(p), control(params, kSerial, controller, buffer, sizeof(buffer)), dfu(detach, params) {
@@ -126,19 +111,24 @@ std::vector<uint8_t> ack_bytes(uint8_t seq, tp::MessageType type) {
 }
 
 TEST(UsbControl, EnumeratesWithTheGoldenDescriptorsOfBothModes) {
-  for (const char* file : {"descriptors_application.txt", "descriptors_bootloader.txt"}) {
-    const auto v = tp::testing::read_vector_file(tp::testing::vectors_dir("usb") + "/" + file);
+  const auto files = tp::testing::read_vectors("usb", "descriptors_");
+  ASSERT_TRUE(files.has_value()) << files.error();
+  size_t modes = 0;
+  for (const tp::testing::HexFile& f : *files) {
+    if (f.stem != "descriptors_application" && f.stem != "descriptors_bootloader") continue;
+    ++modes;
+    const auto v = tp::testing::usb_descriptor_vector(f);
     ASSERT_TRUE(v.has_value()) << v.error();
-    const tp::UsbDeviceParams p = params_from(*v->first("params"));
     RecordingController controller;
     uint8_t buffer[tp::kMaxMessageSize];
-    UsbControl control(p, kSerial, controller, buffer, sizeof(buffer));
+    UsbControl control(v->params, kSerial, controller, buffer, sizeof(buffer));
     PacketHost host(control);
-    EXPECT_EQ(host.in(get_descriptor(tp::kUsbDescriptorDevice, 0, 64)).data, v->first("device")->bytes) << file;
+    EXPECT_EQ(host.in(get_descriptor(tp::kUsbDescriptorDevice, 0, 64)).data, v->device) << f.path;
     const std::vector<uint8_t> config = enumerate(host, controller);
-    EXPECT_EQ(config, v->first("configuration")->bytes) << file;
+    EXPECT_EQ(config, v->configuration) << f.path;
     EXPECT_TRUE(control.configured());
   }
+  EXPECT_EQ(modes, 2u);
 }
 
 TEST(UsbControl, StringsAreTheSpecsAndTheSerial) {

@@ -4,7 +4,7 @@ target_include_directories(tetrapulse_fw_usb_testing PUBLIC ${CMAKE_CURRENT_LIST
 target_link_libraries(tetrapulse_fw_usb_testing PUBLIC tetrapulse::fw_core GTest::gtest PRIVATE tetrapulse_warnings)
 
 tetrapulse_test(fw_usb_control_test SOURCES usb_control_test.cpp
-  LIBS tetrapulse_fw_usb_testing tetrapulse_protocol_vectors)
+  LIBS tetrapulse_fw_usb_testing tetrapulse_protocol_testing)
 tetrapulse_test(fw_usb_endpoint_zero_test SOURCES usb_endpoint_zero_test.cpp
   LIBS tetrapulse_fw_usb_testing rapidcheck rapidcheck_gtest)
 tetrapulse_test(fw_dfu_device_test SOURCES dfu_device_test.cpp

@@ -2,8 +2,8 @@
 // Reassembles CAN transfers into messages (SPEC.md §4.4).
 //
 // Frames are taken one at a time with their receive timestamps (integer ns of any
-// monotonic clock the caller chooses; for time sync, the rig-time estimate at the
-// frame's reception). A completed message carries the first frame's timestamp.
+// monotonic clock the caller chooses; for time sync, the local clock at the end of the
+// frame's reception, SPEC.md §2.4). A completed message carries the first frame's timestamp.
 // Sessions are keyed by (source, type, destination); the caller owns their storage.
 // The receiver looks at every frame it is given: filter by destination first
 // (can_node_filters) so that other nodes' traffic does not take sessions.
@@ -51,7 +51,7 @@ enum class CanFrameVerdict : uint8_t {
 struct CanReceivedTransfer {
   CanId id;                  // of the first frame
   uint8_t transfer_id = 0;
-  int64_t timestamp_ns = 0;  // reception of the first frame
+  int64_t timestamp_ns = 0;  // end of the first frame's reception
   ByteView message;          // valid until the receiver is called again
 };
 

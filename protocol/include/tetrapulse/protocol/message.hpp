@@ -46,6 +46,13 @@ Status encode(const Message& message, ByteWriter& out);
 // kBadLength), and leftover bytes (kTrailingBytes). Never reads outside `in`.
 Result<Message> decode(ByteView in);
 
+// As decode(in); on failure `*stopped_at` is the byte offset where decoding stopped,
+// what ErrorResponse.detail carries (SPEC.md §3): 0 for kBadVersion, 1 for kUnknownMessage,
+// the start of the field that runs past the end for kTruncated, the offset after the count
+// for a count the bytes disagree with, the end of the last field for a value check or
+// kTrailingBytes. Untouched on success; `stopped_at` must not be null.
+Result<Message> decode(ByteView in, size_t* stopped_at);
+
 // One line naming the message and every field ("identify seq=7 pattern=2 duration_ms=500"),
 // for logs and tests. Writes at most `capacity` bytes including the terminating NUL and
 // returns the length the whole line needs (like snprintf).

@@ -1,6 +1,7 @@
 #pragma once
 // Two-step time sync, broadcast by the sync master and never answered (SPEC.md §2.4).
-// A board time-stamps Sync on reception; FollowUp then says when the master sent it.
+// A board time-stamps Sync on reception; FollowUp then says when the master sent it. Both
+// times denote the end of the frame that carries the Sync (SPEC.md §2.4).
 #include <cstdint>
 
 #include "tetrapulse/protocol/message_type.hpp"
@@ -20,7 +21,7 @@ struct Sync {
 struct FollowUp {
   static constexpr MessageType kType = MessageType::kFollowUp;
   uint16_t sync_seq = 0;   // the Sync this follows
-  int64_t tx_time_ns = 0;  // the master's precise transmit time of that Sync, rig ns
+  int64_t tx_time_ns = 0;  // rig ns at the end of that Sync's frame on the link
 
   template <class Io, class Self>
   static void fields(Io& io, Self& m) {
