@@ -2,6 +2,9 @@
 // and write the rig dataset's targets.yaml.
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <set>
@@ -16,6 +19,9 @@
 #include "exit_codes.hpp"
 #include "tetrapulse/localizer/dataset_io.hpp"
 #include "tetrapulse/localizer/targets.hpp"
+#include "tetrapulse/host/board_config_yaml.hpp"
+#include "tetrapulse/host/config_text.hpp"
+#include "tetrapulse/protocol/can_id.hpp"
 #include "tetrapulse/protocol/codebook.hpp"
 #include "tetrapulse/protocol/codebook_workspace.hpp"
 #include "tetrapulse/protocol/limits.hpp"
@@ -40,6 +46,8 @@ struct GenerateArgs {
   std::string geometry;
   std::vector<int> ids;
   std::string out;
+  std::optional<std::string> board_configs;  // folder; default: "boards" beside --out
+  std::optional<std::string> board_sync;     // none | gpio | can
   bool capacity = false;
 };
 
@@ -114,6 +122,62 @@ Target builtin_geometry() {
       Eigen::Vector3d(0.0313, -0.01105, 0.02695), Eigen::Vector3d(-0.0401, 0.01245, 0.03105)};
   for (size_t k = 0; k < kMarkers; ++k) t.markers[k].position_m = p[k];
   return t;
+}
+
+// A board's configuration for target `t` of `file`: its codes and the file's time base and
+// modulation; node ids 1..254 in target order.
+protocol::Config board_config(const TargetsFile& file, size_t index, protocol::SyncSource sync) {
+  const Target& t = file.targets[index];
+  protocol::Config c = protocol::default_config();
+  c.node_id = static_cast<uint8_t>(index % protocol::kCanLastBoardNode + 1);
+  c.target_id = static_cast<uint16_t>(t.id);
+  for (size_t k = 0; k < kMarkers; ++k) {
+    if (t.markers[k].code) c.codes[k] = protocol::Code{static_cast<uint8_t>(t.markers[k].code->length), t.markers[k].code->bits};
+  }
+  c.modulation = file.modulation.kind == ModulationKind::kTwoLevel ? protocol::Modulation::kTwoLevel
+                 : file.modulation.kind == ModulationKind::kConstant ? protocol::Modulation::kConstant
+                                                                      : protocol::Modulation::kOnOff;
+  if (c.modulation == protocol::Modulation::kTwoLevel) {
+    c.low_level = static_cast<uint16_t>(std::lround(file.modulation.low * 65535.0));
+  }
+  c.bit_period_ns = static_cast<uint32_t>(file.timebase.bit_period_ns);
+  c.epoch_ns = file.timebase.epoch_ns;
+  c.sync_source = sync;
+  return c;
+}
+
+int write_board_configs(const TargetsFile& file, const std::string& folder, protocol::SyncSource sync) {
+  for (const Target& t : file.targets) {
+    if (t.id > 65535) {
+      codebook_error(fmt::format("target id {}: a board's target_id is 0..65535", t.id));
+      return kExitUsage;
+    }
+  }
+  if (file.timebase.bit_period_ns < protocol::kMinBitPeriodNs || file.timebase.bit_period_ns > UINT32_MAX) {
+    codebook_error(fmt::format("--bit-period-ns {}: a board plays {}..{} ns", file.timebase.bit_period_ns,
+                               protocol::kMinBitPeriodNs, UINT32_MAX));
+    return kExitUsage;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  for (size_t i = 0; i < file.targets.size(); ++i) {
+    const Target& t = file.targets[i];
+    const std::string path = (std::filesystem::path(folder) / fmt::format("target-{}.yaml", t.id)).string();
+    const std::string header = fmt::format(
+        "Board configuration for target {}{} (tetrapulse codebook); apply with\n"
+        "tetrapulse config --file {} --persist --usb SERIAL (or --can IFACE:NODE, --serial PORT)",
+        t.id, t.name.empty() ? "" : " (" + t.name + ")", path);
+    auto written = write_text_file(path, host::format_board_config_yaml(board_config(file, i, sync), header));
+    if (!written) {
+      codebook_error(written.error().what());
+      return kExitBadInput;
+    }
+  }
+  if (file.targets.size() > protocol::kCanLastBoardNode) {
+    std::fprintf(stderr, "tetrapulse codebook: more than %u targets: CAN node ids repeat, give each bus its own\n",
+                 unsigned{protocol::kCanLastBoardNode});
+  }
+  return kExitOk;
 }
 
 int run_generate(const GenerateArgs& a) {
@@ -203,8 +267,6 @@ int run_generate(const GenerateArgs& a) {
     }
     out.targets.push_back(std::move(t));
   }
-  // Per-board configuration (the code table a board plays) belongs here once
-  // the protocol's configuration messages exist; targets.yaml is the source.
   auto written = write_text_file(a.out, format_targets_yaml(out));
   if (!written) {
     codebook_error(written.error().what());
@@ -212,6 +274,12 @@ int run_generate(const GenerateArgs& a) {
   }
   fmt::print("{}: {} targets, {} codes ({}), seed {}\n", a.out, targets, codes.size(), describe_codebook_spec(*spec),
              a.seed);
+  // One board configuration per target, for `tetrapulse config --file`.
+  const std::string folder =
+      a.board_configs.value_or((std::filesystem::path(a.out).parent_path() / "boards").string());
+  const protocol::SyncSource sync = *host::parse_sync_source(a.board_sync.value_or(timing == CodeTiming::kSynchronized ? "can" : "none"));
+  if (const int r = write_board_configs(out, folder, sync); r != kExitOk) return r;
+  fmt::print("{}: {} board configurations (sync {})\n", folder, targets, host::sync_source_name(sync));
   return kExitOk;
 }
 
@@ -245,6 +313,12 @@ void add_codebook_command(CLI::App& app, int* result) {
   cmd->add_option("--ids", gen->ids, "Target ids, comma-separated (default 1..N)")->delimiter(',');
   cmd->add_option("--out", gen->out, "targets.yaml to write");
   cmd->add_flag("--capacity", gen->capacity, "Only report how many codes the constraints allow (by search)");
+  cmd->add_option("--board-configs", gen->board_configs,
+                  "Folder for one board configuration per target, target-ID.yaml (default: boards/ beside --out)");
+  cmd->add_option("--board-sync", gen->board_sync,
+                  "Sync source in the board configurations: none, gpio or can (default: can when synchronized, "
+                  "none when free-running)")
+      ->check(CLI::IsMember({"none", "gpio", "can"}));
 
   add_codebook_check_command(cmd, result);
   cmd->require_subcommand(0, 1);

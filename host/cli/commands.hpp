@@ -9,5 +9,12 @@ void add_version_command(CLI::App& app, int* result);
 void add_codebook_command(CLI::App& app, int* result);
 void add_sim_command(CLI::App& app, int* result);
 void add_target_command(CLI::App& app, int* result);
+void add_list_command(CLI::App& app, int* result);
+void add_info_command(CLI::App& app, int* result);
+void add_config_command(CLI::App& app, int* result);
+void add_identify_command(CLI::App& app, int* result);
+void add_status_command(CLI::App& app, int* result);
+void add_flash_command(CLI::App& app, int* result);
+void add_sync_command(CLI::App& app, int* result);
 
 }  // namespace tetrapulse::cli

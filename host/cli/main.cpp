@@ -15,6 +15,13 @@ int main(int argc, char** argv) {
   add_codebook_command(app, &result);
   add_sim_command(app, &result);
   add_target_command(app, &result);
+  add_list_command(app, &result);
+  add_info_command(app, &result);
+  add_config_command(app, &result);
+  add_identify_command(app, &result);
+  add_status_command(app, &result);
+  add_flash_command(app, &result);
+  add_sync_command(app, &result);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

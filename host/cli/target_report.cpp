@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "json_text.hpp"
+
 namespace tetrapulse::cli {
 
 namespace {
@@ -13,21 +15,6 @@ constexpr double kDegrees = 180.0 / M_PI;
 std::string target_label(const TargetsFile& targets, int index) {
   const Target& t = targets.targets[static_cast<size_t>(index)];
   return t.name.empty() ? fmt::format("target {}", t.id) : fmt::format("target {} ({})", t.id, t.name);
-}
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += fmt::format("\\u{:04x}", static_cast<unsigned>(static_cast<unsigned char>(c)));
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
 }
 
 // JSON has no infinity: an unbounded conditioning is written as null.

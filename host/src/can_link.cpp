@@ -1,0 +1,120 @@
+#include "tetrapulse/host/can_link.hpp"
+
+#include <linux/can/error.h>
+
+#include <fmt/format.h>
+
+#include "tetrapulse/host/rig_clock.hpp"
+
+namespace tetrapulse::host {
+
+using protocol::MessageType;
+
+uint8_t can_priority_for(MessageType type) {
+  if (type == MessageType::kUpdateChunk) return protocol::kCanPriorityBulk;
+  if (protocol::is_time_sync(type)) return protocol::kCanPrioritySync;
+  return protocol::is_response(type) ? protocol::kCanPriorityResponse : protocol::kCanPriorityRequest;
+}
+
+std::string can_link_name(const std::string& interface_name, uint8_t peer_node) {
+  return peer_node == protocol::kCanBroadcastNode ? fmt::format("can:{}:all", interface_name)
+                                                  : fmt::format("can:{}:{}", interface_name, peer_node);
+}
+
+HostResult<std::unique_ptr<CanLink>> CanLink::open(const std::string& interface_name, uint8_t peer_node,
+                                                   uint8_t local_node) {
+  const std::string name = can_link_name(interface_name, peer_node);
+  if (local_node == protocol::kCanBroadcastNode || local_node == peer_node) {
+    return host_error(HostErrorKind::kBadInput, name, fmt::format("node {} cannot talk to node {}", local_node, peer_node));
+  }
+  const protocol::CanNodeFilters f = protocol::can_node_filters(local_node);
+  SocketCanOptions options;
+  options.filters = {f.addressed, f.broadcast};
+  auto port = open_socketcan(interface_name, options);
+  if (!port) {
+    HostError e = port.error();
+    e.device = name;
+    return tl::unexpected(e);
+  }
+  return std::make_unique<CanLink>(std::move(*port), local_node, peer_node);
+}
+
+CanLink::CanLink(std::unique_ptr<CanPort> port, uint8_t local_node, uint8_t peer_node)
+    : Link(can_link_name(port->interface_name(), peer_node)),
+      port_(std::move(port)),
+      local_(local_node),
+      peer_(peer_node),
+      sender_(local_node),
+      receiver_(sessions_, kSessions) {}
+
+HostResult<void> CanLink::send_bytes(protocol::ByteView message) {
+  if (bus_off_) {
+    return host_error(HostErrorKind::kBusOff, name(), "the CAN controller is bus-off (restart the interface)");
+  }
+  if (message.size < protocol::kMessageHeaderSize) {
+    return host_error(HostErrorKind::kBadInput, name(), fmt::format("a {}-byte message is too short", message.size));
+  }
+  const uint8_t priority = can_priority_for(static_cast<MessageType>(message[1]));
+  HostError failure;
+  const protocol::Status sent = sender_.send(priority, peer_, message, [&](const protocol::CanFrame& frame) {
+    auto queued = port_->send(frame);
+    if (queued) return protocol::Status{};
+    failure = queued.error();
+    failure.device = name();
+    return protocol::Status{protocol::Error::kBusy};
+  });
+  if (sent) return {};
+  if (!failure.message.empty()) return tl::unexpected(failure);
+  return host_error(HostErrorKind::kBadInput, name(),
+                    fmt::format("cannot send a {}-byte message: {}", message.size, protocol::error_name(sent.error())),
+                    sent.error());
+}
+
+std::string CanLink::silence_hint() const {
+  if (error_frames_ == 0) return {};
+  return fmt::format(" ({} CAN error frames, the last: {})", error_frames_, can_error_class_names(last_error_class_));
+}
+
+HostResult<std::optional<RawMessage>> CanLink::receive_bytes(int64_t timeout_ns) {
+  const int64_t deadline = monotonic_now_ns() + timeout_ns;
+  for (;;) {
+    const int64_t left = deadline - monotonic_now_ns();
+    if (left < 0) return std::nullopt;
+    auto event = port_->next(left);
+    if (!event) {
+      HostError e = event.error();
+      e.device = name();
+      return tl::unexpected(e);
+    }
+    if (!event->has_value()) return std::nullopt;
+    const CanPortEvent& e = **event;
+    if (e.kind == CanPortEvent::Kind::kError) {
+      ++error_frames_;
+      last_error_class_ = e.error_class;
+      if ((e.error_class & CAN_ERR_RESTARTED) != 0) bus_off_ = false;
+      if ((e.error_class & CAN_ERR_BUSOFF) != 0) {
+        bus_off_ = true;
+        return host_error(HostErrorKind::kBusOff, name(), "the CAN controller went bus-off");
+      }
+      continue;
+    }
+    if (e.kind != CanPortEvent::Kind::kFrame || e.own) continue;
+    const protocol::Result<protocol::CanId> id = protocol::unpack_can_id(e.frame.id);
+    if (!id) {
+      ++counters_.transport_errors;
+      continue;
+    }
+    // Only what is addressed to us, from our peer (any board when the peer is broadcast).
+    if (id->destination != local_ && id->destination != protocol::kCanBroadcastNode) continue;
+    if (id->source == local_ || (peer_ != protocol::kCanBroadcastNode && id->source != peer_)) continue;
+    const protocol::CanReceiveOutcome out = receiver_.accept(e.frame, e.timestamp_ns);
+    if (out.verdict == protocol::CanFrameVerdict::kDropped || out.fault != protocol::CanFault::kNone) {
+      ++counters_.transport_errors;
+    }
+    if (out.verdict != protocol::CanFrameVerdict::kComplete) continue;
+    const protocol::ByteView m = out.transfer.message;
+    return RawMessage{std::vector<uint8_t>(m.begin(), m.end()), out.transfer.timestamp_ns, out.transfer.id.source};
+  }
+}
+
+}  // namespace tetrapulse::host
