@@ -131,6 +131,7 @@ BoardExit run_application(const LinuxBoardOptions& o, FileFlash& flash, const fw
             (sync_input ? ", sync input " + o.sync_line : "") + ", " + std::to_string(o.led_lines.size()) + " LED lines");
 
   int64_t next_report = monotonic_ns() + 1'000'000'000;
+  bool confirmed = firmware.confirmed();
   for (;;) {
     std::vector<pollfd> fds;
     const int ep0 = usb ? usb->ep0_fd() : -1;
@@ -170,6 +171,11 @@ BoardExit run_application(const LinuxBoardOptions& o, FileFlash& flash, const fw
     leds.apply_due(clock.now());
     firmware.poll();
     if (dfu) dfu->poll(static_cast<uint32_t>(monotonic_ns() / 1'000'000));
+    if (!confirmed && firmware.confirmed()) {
+      confirmed = true;
+      board_log("image " + version_text(choice.header.fw_version) + " in slot " + std::to_string(choice.slot) +
+                " confirmed");
+    }
     if (const auto& mode = system.requested()) {
       if (usb) usb->drain(500);  // the reboot's Ack leaves first
       const bool stay = *mode == tp::RebootMode::kBootloader;

@@ -1,0 +1,62 @@
+#!/bin/sh
+# USB DFU into the Linux board. Debian's dfu-util detaches the application (DFU run-time
+# interface), downloads into the DFU-mode bootloader and resets; the board then runs and
+# reports the new version. `tetrapulse flash` does the same. A corrupted image is refused
+# (errVERIFY) and the board returns to the image it had.
+set -eu
+. /lib/tetrapulse/vm-lib.sh
+. /lib/tetrapulse/board-lib.sh
+
+for v in 1.0.0 1.1.0 1.2.0 1.3.0; do
+  tetrapulse-board image --fw-version "$v" --payload-size 65536 --seed "${v%%.*}${v#*.}" --out "/tmp/dfu-$v.img"
+done
+# The 1.3.0 image with one payload byte changed: its header (and header CRC) stays valid.
+cp /tmp/dfu-1.3.0.img /tmp/dfu-bad.img
+printf '\125' | dd of=/tmp/dfu-bad.img bs=1 seek=30000 conv=notrunc 2>/dev/null
+cmp -s /tmp/dfu-1.3.0.img /tmp/dfu-bad.img && fail "the corrupted image is not corrupted"
+
+trap 'board_stop' EXIT
+# shellcheck disable=SC2046
+board_start /tmp/board-dfu.txt $(board_usb_args /tmp/dfu-flash.bin) --factory-image /tmp/dfu-1.0.0.img --dfu-idle-s 3 ||
+  fail "the board did not start"
+wait_for 20 lsusb -d 1209:0001 || fail "1209:0001 did not enumerate"
+
+version() {
+  json_field "$(tetrapulse info --usb "$BOARD_SERIAL" --json 2>/dev/null)" fw_version
+}
+# After a download the new image runs on trial; it confirms itself after 5 s and a request.
+wait_confirmed() {
+  wait_for 20 sh -c "tetrapulse status --usb $BOARD_SERIAL >/dev/null 2>&1; grep -q 'image $1 in slot . confirmed' /tmp/board-dfu.txt" ||
+    fail "image $1 did not confirm itself"
+}
+
+started=$(cut -d' ' -f1 /proc/uptime)
+dfu-util -d 1209:0001,1209:0002 -D /tmp/dfu-1.1.0.img -R >/tmp/dfu-util.txt 2>&1 || { cat /tmp/dfu-util.txt; cat /tmp/board-dfu.txt; fail "dfu-util -D failed"; }
+cat /tmp/dfu-util.txt
+wait_for 20 lsusb -d 1209:0001 || { cat /tmp/board-dfu.txt; fail "the board did not come back as 1209:0001 after dfu-util"; }
+wait_for 10 sh -c "[ \"\$(json_field \"\$(tetrapulse info --usb $BOARD_SERIAL --json 2>/dev/null)\" fw_version)\" = 1.1.0 ]" ||
+  { cat /tmp/board-dfu.txt; fail "after dfu-util the board runs $(version), not 1.1.0"; }
+echo "dfu: dfu-util -D installed 1.1.0 in $(($(cut -d. -f1 /proc/uptime) - ${started%.*})) s"
+wait_confirmed 1.1.0
+
+tetrapulse flash --usb "$BOARD_SERIAL" /tmp/dfu-1.2.0.img >/tmp/flash.txt 2>&1 || { cat /tmp/flash.txt /tmp/board-dfu.txt; fail "tetrapulse flash failed"; }
+cat /tmp/flash.txt
+grep -q 'now running 1.2.0' /tmp/flash.txt || fail "tetrapulse flash does not say the board runs 1.2.0"
+[ "$(version)" = 1.2.0 ] || fail "after tetrapulse flash the board runs $(version), not 1.2.0"
+wait_confirmed 1.2.0
+
+# The corrupted image: the host CLI checks the payload CRC before sending anything...
+if tetrapulse flash --usb "$BOARD_SERIAL" /tmp/dfu-bad.img >/tmp/flash-bad.txt 2>&1; then fail "tetrapulse flash took a corrupted image"; fi
+cat /tmp/flash-bad.txt
+# ...and the board refuses it from dfu-util, which does not.
+if dfu-util -d 1209:0001,1209:0002 -D /tmp/dfu-bad.img -R >/tmp/dfu-bad.txt 2>&1; then
+  cat /tmp/dfu-bad.txt
+  fail "dfu-util reports success for a corrupted image"
+fi
+cat /tmp/dfu-bad.txt
+grep -q 'download refused: errVERIFY' /tmp/board-dfu.txt || { cat /tmp/board-dfu.txt; fail "the board did not refuse the corrupted image with errVERIFY"; }
+# Back to its application after the DFU idle time (3 s): still 1.2.0.
+wait_for 20 sh -c "grep -q 'back to the application' /tmp/board-dfu.txt && lsusb -d 1209:0001" || fail "the board did not return to its application"
+wait_for 10 sh -c "[ \"\$(json_field \"\$(tetrapulse info --usb $BOARD_SERIAL --json 2>/dev/null)\" fw_version)\" = 1.2.0 ]" ||
+  { cat /tmp/board-dfu.txt; fail "after the refused image the board runs $(version), not 1.2.0"; }
+echo "dfu: corrupted image refused (errVERIFY), the board kept 1.2.0"
