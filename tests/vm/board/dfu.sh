@@ -31,7 +31,7 @@ wait_confirmed() {
 }
 
 started=$(cut -d' ' -f1 /proc/uptime)
-dfu-util -d 1209:0001,1209:0002 -D /tmp/dfu-1.1.0.img -R >/tmp/dfu-util.txt 2>&1 || { cat /tmp/dfu-util.txt; cat /tmp/board-dfu.txt; fail "dfu-util -D failed"; }
+dfu-util -E 10 -d 1209:0001,1209:0002 -D /tmp/dfu-1.1.0.img -R >/tmp/dfu-util.txt 2>&1 || { cat /tmp/dfu-util.txt; cat /tmp/board-dfu.txt; fail "dfu-util -D failed"; }
 cat /tmp/dfu-util.txt
 wait_for 20 lsusb -d 1209:0001 || { cat /tmp/board-dfu.txt; fail "the board did not come back as 1209:0001 after dfu-util"; }
 wait_for 10 sh -c "[ \"\$(json_field \"\$(tetrapulse info --usb $BOARD_SERIAL --json 2>/dev/null)\" fw_version)\" = 1.1.0 ]" ||
@@ -49,7 +49,7 @@ wait_confirmed 1.2.0
 if tetrapulse flash --usb "$BOARD_SERIAL" /tmp/dfu-bad.img >/tmp/flash-bad.txt 2>&1; then fail "tetrapulse flash took a corrupted image"; fi
 cat /tmp/flash-bad.txt
 # ...and the board refuses it from dfu-util, which does not.
-if dfu-util -d 1209:0001,1209:0002 -D /tmp/dfu-bad.img -R >/tmp/dfu-bad.txt 2>&1; then
+if dfu-util -E 10 -d 1209:0001,1209:0002 -D /tmp/dfu-bad.img -R >/tmp/dfu-bad.txt 2>&1; then
   cat /tmp/dfu-bad.txt
   fail "dfu-util reports success for a corrupted image"
 fi

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "tetrapulse/protocol/usb_device.hpp"
@@ -76,7 +77,9 @@ std::string UsbGadget::create(const UsbGadgetSpec& spec) {
   if (::symlink(function.c_str(), (g + "/configs/c.1/ffs." + spec.name).c_str()) != 0 && errno != EEXIST) {
     return g + "/configs/c.1: cannot link the function: " + std::strerror(errno);
   }
-  if (std::string e = make_dir(spec.mount_dir); !e.empty()) return e;
+  std::error_code made;
+  std::filesystem::create_directories(spec.mount_dir, made);
+  if (made) return spec.mount_dir + ": " + made.message();
   if (::mount(spec.name.c_str(), spec.mount_dir.c_str(), "functionfs", 0, nullptr) != 0) {
     return "mount functionfs " + spec.name + " at " + spec.mount_dir + ": " + std::strerror(errno);
   }
