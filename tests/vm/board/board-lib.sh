@@ -11,7 +11,7 @@ board_start() {
   shift
   tetrapulse-board "$@" >"$board_log_file" 2>&1 &
   echo "$!" >/run/board.pid
-  if ! wait_for 20 grep -q -e ': application ' -e 'bootloader: DFU mode' "$board_log_file"; then
+  if ! wait_for 20 grep -q -e '] application ' -e 'bootloader: DFU mode' "$board_log_file"; then
     cat "$board_log_file"
     return 1
   fi

@@ -106,7 +106,7 @@ BoardExit run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
     if (usb->last_request_ns() > idle_since) idle_since = usb->last_request_ns();
     if (dfu.status() != reported) {
       reported = dfu.status();
-      if (reported != tp::DfuStatusCode::kOk) board_log(std::string("bootloader: download refused: ") + status_name(reported));
+      if (reported != tp::DfuStatusCode::kOk && installed_at == 0) board_log(std::string("bootloader: download refused: ") + status_name(reported));
     }
     if (dfu.installed() && installed_at == 0) {
       installed_at = now;

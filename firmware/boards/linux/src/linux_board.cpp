@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "board_boot.hpp"
+#include "tetrapulse/linux_board/monotonic_clock.hpp"
 #include "tetrapulse/fw/boot_state.hpp"
 #include "tetrapulse/fw/config_store.hpp"
 #include "tetrapulse/fw/record_store.hpp"
@@ -46,7 +47,9 @@ std::string program_factory(const LinuxBoardOptions& o, FileFlash& flash) {
 }  // namespace
 
 void board_log(const std::string& line) {
-  std::printf("tetrapulse-board: %s\n", line.c_str());
+  const int64_t now = monotonic_ns();
+  std::printf("tetrapulse-board: [%lld.%03lld] %s\n", static_cast<long long>(now / 1'000'000'000),
+              static_cast<long long>(now / 1'000'000 % 1000), line.c_str());
   std::fflush(stdout);
 }
 

@@ -42,7 +42,7 @@ struct BoardExit {
 
 BoardExit run_board(const LinuxBoardOptions& options);
 
-// One line on stdout, prefixed "tetrapulse-board: " (tests read these).
+// One line on stdout, prefixed "tetrapulse-board: [monotonic seconds] " (tests read these).
 void board_log(const std::string& line);
 
 }  // namespace tetrapulse::linux_board
