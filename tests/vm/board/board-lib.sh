@@ -41,3 +41,15 @@ board_count() {
 json_field() {
   echo "$1" | sed -n "s/.*\"$2\": *\"\{0,1\}\([^\",}]*\).*/\1/p"
 }
+
+# board_wait_version VERSION TRIES: until `tetrapulse info` over USB reports VERSION
+# (one try a second at most).
+board_wait_version() {
+  board_tries=$2
+  while [ "$board_tries" -gt 0 ]; do
+    [ "$(json_field "$(tetrapulse info --usb "$BOARD_SERIAL" --json 2>/dev/null)" fw_version)" = "$1" ] && return 0
+    sleep 1
+    board_tries=$((board_tries - 1))
+  done
+  return 1
+}

@@ -44,7 +44,7 @@ started=$(cut -d' ' -f1 /proc/uptime)
 dfu_util_flash /tmp/dfu-1.1.0.img >/tmp/dfu-util.txt 2>&1 || { cat /tmp/dfu-util.txt; cat /tmp/board-dfu.txt; fail "dfu-util -D failed"; }
 cat /tmp/dfu-util.txt
 wait_for 20 lsusb -d 1209:0001 || { cat /tmp/board-dfu.txt; fail "the board did not come back as 1209:0001 after dfu-util"; }
-wait_for 10 sh -c "[ \"\$(json_field \"\$(tetrapulse info --usb $BOARD_SERIAL --json 2>/dev/null)\" fw_version)\" = 1.1.0 ]" ||
+board_wait_version 1.1.0 15 ||
   { cat /tmp/board-dfu.txt; fail "after dfu-util the board runs $(version), not 1.1.0"; }
 echo "dfu: dfu-util -D installed 1.1.0 in $(($(cut -d. -f1 /proc/uptime) - ${started%.*})) s"
 wait_confirmed 1.1.0
@@ -58,15 +58,14 @@ wait_confirmed 1.2.0
 # The corrupted image: the host CLI checks the payload CRC before sending anything...
 if tetrapulse flash --usb "$BOARD_SERIAL" /tmp/dfu-bad.img >/tmp/flash-bad.txt 2>&1; then fail "tetrapulse flash took a corrupted image"; fi
 cat /tmp/flash-bad.txt
-# ...and the board refuses it from dfu-util, which does not.
-if dfu_util_flash /tmp/dfu-bad.img >/tmp/dfu-bad.txt 2>&1; then
-  cat /tmp/dfu-bad.txt
-  fail "dfu-util reports success for a corrupted image"
-fi
-cat /tmp/dfu-bad.txt
+# ...and the board refuses it from dfu-util, which does not (dfu-util 0.11 prints the
+# device's dfuERROR / errVERIFY status after manifestation and still exits 0).
+dfu_util_flash /tmp/dfu-bad.img >/tmp/dfu-bad.txt 2>&1 || :
+grep -v '^Download' /tmp/dfu-bad.txt | tail -5
+grep -q 'status(7)' /tmp/dfu-bad.txt || fail "dfu-util did not see errVERIFY (status 7) from the board"
 grep -q 'download refused: errVERIFY' /tmp/board-dfu.txt || { cat /tmp/board-dfu.txt; fail "the board did not refuse the corrupted image with errVERIFY"; }
 # Back to its application after the DFU idle time (8 s): still 1.2.0.
 wait_for 40 sh -c "grep -q 'back to the application' /tmp/board-dfu.txt && lsusb -d 1209:0001" || fail "the board did not return to its application"
-wait_for 10 sh -c "[ \"\$(json_field \"\$(tetrapulse info --usb $BOARD_SERIAL --json 2>/dev/null)\" fw_version)\" = 1.2.0 ]" ||
+board_wait_version 1.2.0 15 ||
   { cat /tmp/board-dfu.txt; fail "after the refused image the board runs $(version), not 1.2.0"; }
 echo "dfu: corrupted image refused (errVERIFY), the board kept 1.2.0"
