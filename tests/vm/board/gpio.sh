@@ -26,12 +26,17 @@ while kill -0 "$sync_pid" 2>/dev/null; do
 done
 wait "$sync_pid" || { cat /tmp/trigger.txt; fail "tetrapulse sync --trigger failed"; }
 [ "$ones" -gt 0 ] && [ "$zeros" -gt 0 ] || fail "the trigger line never toggled in sysfs ($ones samples high, $zeros low)"
+# Pulse k rises at first + k * 20 ms: each row's time over its frame number (frames a
+# busy host skipped are numbered past), and the pulse width measured around the set calls.
 awk -F, 'NR == 1 { next }
-  { n++; if (n > 1) { d = $2 - t; if (d < 15000000 || d > 25000000) bad++; sum += d } ; t = $2; if ($3 != 5000000) wide++ }
+  { n++
+    if (n > 1) { p = ($2 - t) / ($1 - k); if (p < 17000000 || p > 23000000) bad++; skipped += $1 - k - 1 }
+    t = $2; k = $1
+    if ($3 < 4000000 || $3 > 9000000) wide++ }
   END {
-    printf "trigger: %d exposures, mean period %.3f ms, %d periods off by > 5 ms, %d not 5 ms wide\n", n, sum / (n - 1) / 1e6, bad, wide
-    if (n != 25 || bad > 2 || wide > 0) exit 1
-  }' /tmp/trigger.csv || { cat /tmp/trigger.csv; fail "the trigger exposures are not 25 frames 20 ms apart"; }
+    printf "trigger: %d exposures, %d frames skipped, %d periods off 20 ms by > 3 ms (a late wake-up under TCG), %d widths outside 4..9 ms\n", n, skipped, bad, wide
+    if (n != 25 || bad > 2 || wide > 2) exit 1
+  }' /tmp/trigger.csv || { cat /tmp/trigger.csv; fail "the trigger exposures are not on a 20 ms grid"; }
 echo "trigger: line sampled high $ones times, low $zeros times through sysfs"
 
 # Strobe: 8 pulses of 50 ms, 100 ms apart, from the pull of a simulated input.
