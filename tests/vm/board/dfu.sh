@@ -7,8 +7,10 @@ set -eu
 . /lib/tetrapulse/vm-lib.sh
 . /lib/tetrapulse/board-lib.sh
 
+seed=1
 for v in 1.0.0 1.1.0 1.2.0 1.3.0; do
-  tetrapulse-board image --fw-version "$v" --payload-size 65536 --seed "${v%%.*}${v#*.}" --out "/tmp/dfu-$v.img"
+  tetrapulse-board image --fw-version "$v" --payload-size 65536 --seed "$seed" --out "/tmp/dfu-$v.img"
+  seed=$((seed + 1))
 done
 # The 1.3.0 image with one payload byte changed: its header (and header CRC) stays valid.
 cp /tmp/dfu-1.3.0.img /tmp/dfu-bad.img
