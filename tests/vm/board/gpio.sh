@@ -61,11 +61,14 @@ while [ "$pulses" -lt 10 ] && kill -0 "$sync_pid" 2>/dev/null; do
 done
 wait "$sync_pid" || { cat /tmp/strobe.txt; fail "tetrapulse sync --strobe failed"; }
 read -r up_end _ </proc/uptime
+# Each pulse is high for at least the shell's 50 ms sleep (longer when the loaded VM wakes
+# it late); frames are numbered by time at 10 Hz, so a slow "camera" skips numbers.
 awk -F, -v t0="${up_start%.*}" -v t1="${up_end%.*}" 'NR == 1 { next }
-  { n++; w = $3; if (w < 40000000 || w > 90000000) bad++; s = $2 / 1e9; if (s < t0 - 1 || s > t1 + 1) off++; if (n > 1 && $2 <= t) order++; t = $2 }
+  { n++; w = $3; if (w < 45000000 || w > 500000000) bad++; s = $2 / 1e9; if (s < t0 - 1 || s > t1 + 1) off++
+    if (n > 1 && ($2 <= t || $1 <= k)) order++; t = $2; k = $1; sum += w }
   END {
-    printf "strobe: %d exposures, %d widths outside 40..90 ms, %d stamps outside the run (monotonic %d..%d s), %d out of order\n", n, bad, off, t0, t1, order
-    if (n != 8 || bad > 1 || off > 0 || order > 0) exit 1
+    printf "strobe: %d exposures from kernel edge stamps, mean width %.1f ms (pulses held >= 50 ms), %d widths outside 45..500 ms, %d stamps outside the run (monotonic %d..%d s), %d out of order\n", n, sum / n / 1e6, bad, off, t0, t1, order
+    if (n != 8 || bad > 0 || off > 0 || order > 0) exit 1
   }' /tmp/strobe.csv || { cat /tmp/strobe.csv; fail "the strobe exposures do not match the pulses"; }
 
 # LEDs: the board on vcan1 (its configuration link), marker 0 playing 1100101000 at 100 ms bits.

@@ -21,7 +21,10 @@ namespace {
 
 namespace tp = protocol;
 
-constexpr int64_t kResetGraceNs = 1'500'000'000;  // after the verdict, wait this long for the host's USB reset
+// After the verdict the board waits this long for the host's USB reset, then restarts
+// into the new image anyway; after the reset it lets the host's reset call return first.
+constexpr int64_t kResetGraceNs = 3'000'000'000;
+constexpr int64_t kAfterResetNs = 500'000'000;
 
 const char* status_name(tp::DfuStatusCode s) {
   switch (s) {
@@ -90,15 +93,16 @@ BoardExit run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
 
   int64_t idle_since = monotonic_ns();
   int64_t installed_at = 0;
-  bool host_reset = false;
+  int64_t reset_done_at = 0;  // the host's USB reset after the verdict has re-enumerated the device
   tp::DfuStatusCode reported = tp::DfuStatusCode::kOk;
   for (;;) {
     pollfd p{usb->ep0_fd(), POLLIN, 0};
     if (::poll(&p, 1, 5) > 0) {
       for (const char* event : usb->handle_ep0()) {
         board_log(std::string("usb: ") + event);
-        // The host's reset after the verdict: start the new image now.
-        if (installed_at != 0 && std::string(event) == "DISABLE") host_reset = true;
+        // The host's USB reset after the verdict (dfu-util -R): the device goes (DISABLE) and
+        // comes back (ENABLE); restart once libusb_reset_device has seen it return.
+        if (installed_at != 0 && std::string(event) == "ENABLE") reset_done_at = monotonic_ns();
       }
     }
     const int64_t now = monotonic_ns();
@@ -112,7 +116,10 @@ BoardExit run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
       installed_at = now;
       board_log("bootloader: image installed in slot " + std::to_string(target) + ", starting it");
     }
-    if (installed_at != 0 && (host_reset || now - installed_at >= kResetGraceNs)) return {true, false, 0};
+    if (installed_at != 0 && ((reset_done_at != 0 && now - reset_done_at >= kAfterResetNs) ||
+                              (reset_done_at == 0 && now - installed_at >= kResetGraceNs))) {
+      return {true, false, 0};
+    }
     const bool mid_download = dfu.state() != tp::DfuState::kDfuIdle && dfu.state() != tp::DfuState::kDfuError;
     if (installed_at == 0 && good != fw::kNoSlot && !mid_download && now - idle_since >= int64_t{o.dfu_idle_s} * 1'000'000'000) {
       board_log("bootloader: no DFU request for " + std::to_string(o.dfu_idle_s) + " s; back to the application");
