@@ -56,6 +56,16 @@ class UsbDfuControl : public DfuControl {
   uint8_t interface_;
 };
 
+// Whether the board with this serial number is still enumerated, in either mode (a new
+// libusb context: it sees the bus as it is now).
+bool on_the_bus(const std::string& serial) {
+  for (const protocol::UsbMode mode : {protocol::UsbMode::kBootloader, protocol::UsbMode::kApplication}) {
+    auto board = usb::open_board(serial, mode);
+    if (board || board.error().kind != HostErrorKind::kNotFound) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 HostResult<UsbDfuReport> usb_dfu_flash(const std::string& serial, protocol::ByteView image, const UsbDfuOptions& options) {
@@ -111,6 +121,15 @@ HostResult<UsbDfuReport> usb_dfu_flash(const std::string& serial, protocol::Byte
   download.progress = options.progress;
   download.cancel = options.cancel;
   auto done = dfu_download(control, image, download);
+  if (!done && done.error().kind == HostErrorKind::kIo && !on_the_bus(report.serial)) {
+    // The transfer failed because the board left the bus (unplugged, reset, its gadget
+    // unbound): say so, and that its bootloader keeps the old image.
+    HostError e = done.error();
+    e.kind = HostErrorKind::kDisconnected;
+    e.message = "the board left the bus during the download (" + e.message +
+                "); it keeps the firmware it had: flash again once it is back";
+    return tl::unexpected(e);
+  }
   if (!done) return tl::unexpected(done.error());
   report.download = *done;
   if (options.reset_after || done->needs_reset) {

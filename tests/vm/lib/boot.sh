@@ -12,7 +12,7 @@ vm_boot() {
   local append="console=ttyS0 quiet panic=-1 tp.nonce=$nonce tp.test_timeout=$test_limit ${TETRAPULSE_VM_APPEND:-}"
   # No KVM: the machines' CPUs lack vmx/svm, so TCG it is.
   set +e
-  timeout -k 5 "$vm_limit" "$qemu" -accel tcg -m 512 -smp 1 -nographic -no-reboot -net none \
+  timeout -k 5 "$vm_limit" "$qemu" -accel tcg -m 1024 -smp 1 -nographic -no-reboot -net none \
     -kernel "$vmlinuz" -initrd "$initrd" -append "$append" </dev/null 2>&1 |
     sed -u 's/\r$//' | tee "$log"
   rc=${PIPESTATUS[0]}

@@ -17,6 +17,9 @@ vm_stage_programs() {
   for program in "$@"; do
     [ -f "$program" ] && [ -x "$program" ] || vm_die "program '$program' does not exist or is not executable"
     cp -L "$program" "$stage/$dir/"
+    # Debug info is most of a RelWithDebInfo binary (the CLI: ~100 MB) and the VM unpacks
+    # its initramfs into RAM.
+    strip --strip-debug "$stage/$dir/$(basename "$program")" 2>/dev/null || :
   done
   libs=$(ldd "$@" 2>&1) || true
   if grep -q 'not found' <<<"$libs"; then
