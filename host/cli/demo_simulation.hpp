@@ -19,8 +19,9 @@ using DemoSimulation =
     std::function<DatasetResult<sim::SimulationSummary>(const sim::Scenario& scenario, const std::string& out,
                                                         int64_t frames)>;
 
-// The virtual rig as `tetrapulse sim` runs it: simulated firmware boards in the
-// loop, synchronised as the scenario says.
+// The virtual rig with simulated firmware boards in the loop, each configured and
+// synchronised by the host's Board and sync master code over SimLink
+// (host::simulate_with_host_boards; same files as `tetrapulse sim --host-boards`).
 DemoSimulation virtual_rig_simulation();
 
 }  // namespace tetrapulse::cli
