@@ -77,12 +77,15 @@ host::HostResult<protocol::PwmCode> pwm_of(double hz, double duty) {
   return *pwm;
 }
 
+// The duty played exactly: lit bits over code bits (duty_q16 is its floor).
+double pwm_duty(const protocol::PwmCode& p) { return double(protocol::word_weight(p.code.bits)) / p.code.length; }
+
 // "1000 Hz duty 0.25 asked: plays 1000.000 Hz duty 0.2500 (...)": what the board will do, exactly.
 std::string pwm_text(const ConfigArgs& a, const protocol::PwmCode& p) {
   return fmt::format(
       "PWM {:g} Hz duty {:g} asked: plays {:.3f} Hz duty {:.4f} ({} of {} bits lit on a {} ns bit period, duty "
       "steps of 1/{}) on all four markers",
-      *a.pwm_hz, a.duty, p.frequency_millihertz / 1000.0, p.duty_q16 / 65536.0, protocol::word_weight(p.code.bits),
+      *a.pwm_hz, a.duty, p.frequency_millihertz / 1000.0, pwm_duty(p), protocol::word_weight(p.code.bits),
       p.code.length, p.bit_period_ns, p.code.length);
 }
 
@@ -193,7 +196,7 @@ int run_config(const ConfigArgs& a) {
     if (pwm) {
       out.raw("pwm", JsonObject()
                          .num("frequency_hz", pwm->frequency_millihertz / 1000.0)
-                         .num("duty", pwm->duty_q16 / 65536.0)
+                         .num("duty", pwm_duty(*pwm))
                          .str("code", host::code_text(pwm->code))
                          .num("bit_period_ns", pwm->bit_period_ns)
                          .text());

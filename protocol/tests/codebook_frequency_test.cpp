@@ -237,6 +237,7 @@ RC_GTEST_PROP(CodebookFrequency, BinaryWordsThatPassStayApartUnderClockError, ()
   const uint64_t freq[] = {square_wave_word(SquareWave{F, static_cast<uint8_t>(F / 2)})};
   const uint8_t freq_len[] = {F};
   const bool apart = check_binary_beside_frequency(s, binary, binary_len, 1, freq, freq_len, 1).ok();
+  RC_CLASSIFY(apart);
   const double P = s.camera.frame_period_ns * 1e-9;
   const double fb = 1.0 / (least_period(binary[0], L) * s.bit_period_ns * 1e-9);
   const double ff = 1.0 / (F * s.bit_period_ns * 1e-9);

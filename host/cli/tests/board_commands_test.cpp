@@ -14,6 +14,7 @@
 #include "tetrapulse/host/board.hpp"
 #include "tetrapulse/host/config_text.hpp"
 #include "tetrapulse/host/sim_board_link.hpp"
+#include "tetrapulse/protocol/codebook_word.hpp"
 #include "tetrapulse/protocol/pwm_code.hpp"
 #include "tetrapulse/sim_board/sim_image.hpp"
 #include "test_images.hpp"
@@ -138,10 +139,10 @@ TEST(BoardCommands, ConfigPwmPlaysTheFrequencyAndDutyItPrints) {
                                         static_cast<uint32_t>(std::llround(c.duty * 65536)));
     ASSERT_TRUE(pwm.ok()) << args;
     const std::string code = host::code_text(pwm->code);
+    const double duty = double(protocol::word_weight(pwm->code.bits)) / pwm->code.length;  // exactly
     const CliRun human = run_cli(dir, args);
     ASSERT_EQ(human.exit, kExitOk) << args << "\n" << human.err;
-    EXPECT_NE(human.out.find(fmt::format("plays {:.3f} Hz duty {:.4f}", pwm->frequency_millihertz / 1000.0,
-                                         pwm->duty_q16 / 65536.0)),
+    EXPECT_NE(human.out.find(fmt::format("plays {:.3f} Hz duty {:.4f}", pwm->frequency_millihertz / 1000.0, duty)),
               std::string::npos)
         << human.out;
     EXPECT_NE(human.out.find(fmt::format("on a {} ns bit period, duty steps of 1/{}", pwm->bit_period_ns,
@@ -179,7 +180,7 @@ TEST(BoardCommands, ConfigPwmPlaysTheFrequencyAndDutyItPrints) {
       EXPECT_NEAR(got.hz, pwm->frequency_millihertz / 1000.0, pwm->frequency_millihertz / 1000.0 * 2 * tick_ns /
                                                                   (got.periods * period_ns) + 1e-9)
           << args;
-      EXPECT_NEAR(got.duty, pwm->duty_q16 / 65536.0, 2 * tick_ns / period_ns + 1e-9) << args;
+      EXPECT_NEAR(got.duty, duty, 2 * tick_ns / period_ns + 1e-9) << args;
       EXPECT_NEAR(got.duty, c.duty, 0.5 / pwm->code.length + 1e-9) << args << ": within half a duty step";
     }
   }
@@ -189,26 +190,31 @@ TEST(BoardCommands, ConfigPwmRefusesWhatNoBoardPlays) {
   CliTempDir dir("board");
   struct Case {
     std::string args;
-    int exit;
     std::string says;
   };
   for (const Case& c : {
-           Case{"--pwm-hz 0", kExitUsage, "--pwm-hz 0: outside 0.01 Hz .. 50000 Hz"},
-           Case{"--pwm-hz=-5", kExitUsage, "--pwm-hz -5: outside"},
-           Case{"--pwm-hz 50001", kExitUsage, "the highest is two bits of the shortest bit period, 10000 ns"},
-           Case{"--pwm-hz 1e9", kExitUsage, "--pwm-hz 1e+09: outside"},
-           Case{"--pwm-hz 100 --duty 0", kExitUsage, "--duty 0: must be between 0 and 1"},
-           Case{"--pwm-hz 100 --duty 1", kExitUsage, "--duty 1: must be between 0 and 1"},
-           Case{"--pwm-hz 100 --duty=-0.2", kExitUsage, "--duty -0.2: must be between 0 and 1"},
-           Case{"--pwm-hz 100 --modulation constant", kExitUsage, "--modulation constant plays no code"},
-           Case{"--duty 0.5", kExitUsage, "--duty requires --pwm-hz"},
-           Case{"--pwm-hz 100 --code 0=1101", kExitUsage, "--pwm-hz excludes --code"},
+           Case{"--pwm-hz 0", "--pwm-hz 0: outside 0.01 Hz .. 50000 Hz"},
+           Case{"--pwm-hz=-5", "--pwm-hz -5: outside"},
+           Case{"--pwm-hz 50001", "the highest is two bits of the shortest bit period, 10000 ns"},
+           Case{"--pwm-hz 1e9", "--pwm-hz 1e+09: outside"},
+           Case{"--pwm-hz 100 --duty 0", "--duty 0: must be between 0 and 1"},
+           Case{"--pwm-hz 100 --duty 1", "--duty 1: must be between 0 and 1"},
+           Case{"--pwm-hz 100 --duty=-0.2", "--duty -0.2: must be between 0 and 1"},
+           Case{"--pwm-hz 100 --modulation constant", "--modulation constant plays no code"},
        }) {
     const CliRun r = run_cli(dir, "config --board sim:1 " + c.args);
-    EXPECT_EQ(r.exit, c.exit) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.exit, kExitUsage) << c.args << "\n" << r.err;
     EXPECT_EQ(r.err_lines(), 1u) << c.args << "\n" << r.err;
     EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << "\n" << r.err;
     EXPECT_EQ(r.out, "") << c.args;
+  }
+  // Options that do not go together are refused by the command-line parser (with its "Run with --help" line).
+  for (const Case& c : {Case{"--duty 0.5", "--duty requires --pwm-hz"},
+                        Case{"--pwm-hz 100 --code 0=1101", "--code excludes --pwm-hz"},
+                        Case{"--pwm-hz 100 --bit-period-ns 20000", "--bit-period-ns excludes --pwm-hz"}}) {
+    const CliRun r = run_cli(dir, "config --board sim:1 " + c.args);
+    EXPECT_EQ(r.exit, kExitUsage) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind(c.says + "\n", 0), 0u) << c.args << "\n" << r.err;
   }
   // Quantisation and range are stated in --help.
   const CliRun help = run_cli(dir, "config --help");
