@@ -77,7 +77,7 @@ class MalformedVector : public ::testing::TestWithParam<VectorCase> {};
 TEST_P(MalformedVector, GetsTypedErrorOrIsDroppedAndChangesNothing) {
   const VectorCase& c = GetParam();
   ASSERT_EQ(c.load_error, "");
-  const Error expected = protocol::testing::expected_error(c.record.name);
+  const Error expected = protocol::testing::expected_error(c.record);
   HandlerBoard b;
   const Snapshot before = snapshot(b.board);
   const uint16_t malformed_before = b.board.status().rx_malformed;
