@@ -51,29 +51,60 @@ int64_t lit_ns(int64_t start_ns, int64_t duration_ns, int64_t period_ns, int64_t
   return lit_before(start_ns + duration_ns) - lit_before(start_ns);
 }
 
+namespace {
+
+// A square wave seen through an exposure of E = q C + r ns starting at code
+// phase s (any s): lit(s) = q on + (lit time of r ns from s). It is symmetric
+// about c = (on - r) / 2, where the r ns are centred on the lit run, and
+// non-increasing from c to c + C/2: a trapezoid. So the phases whose exposure
+// is lit less than half form one arc of the period, [b, b + d).
+struct ExposedWave {
+  int64_t C, on, E;
+
+  int64_t phase(int64_t s) const { return ((s % C) + C) % C; }
+  int64_t lit(int64_t s) const { return lit_ns(phase(s), E, C, on); }
+  bool dark(int64_t s) const { return 2 * lit(s) < E; }
+  int64_t brightest() const { return phase((on - E % C) / 2); }
+};
+
+}  // namespace
+
 WaveVisibility wave_visibility(const CameraTiming& camera, int64_t bit_period_ns, SquareWave wave,
                                uint32_t dark_cap) {
   WaveVisibility v;
   const int64_t P = camera.frame_period_ns;
   const int64_t E = camera.exposure_ns;
-  const int64_t C = static_cast<int64_t>(wave.length) * bit_period_ns;
-  const int64_t on = static_cast<int64_t>(wave.ones) * bit_period_ns;
-  if (P <= 0 || E <= 0 || C <= 0) return v;
-  int64_t least = E;
-  int64_t most = 0;
-  for (uint32_t g = 0; g < kPhaseGrid; ++g) {
-    // Frame 0 exposed from phase `start` of the code: every frame of every
-    // phase is frame 0 of some phase, so a dark run starting at frame 0 is
-    // every dark run (up to the grid).
-    const int64_t start = C * static_cast<int64_t>(g) / static_cast<int64_t>(kPhaseGrid);
-    const int64_t lit = lit_ns(start, E, C, on);
-    least = lit < least ? lit : least;
-    most = lit > most ? lit : most;
-    uint32_t run = 0;
-    while (run <= dark_cap && 2 * lit_ns(start + static_cast<int64_t>(run) * P, E, C, on) < E) ++run;
-    v.dark_frames = run > v.dark_frames ? run : v.dark_frames;
+  const ExposedWave w{static_cast<int64_t>(wave.length) * bit_period_ns,
+                      static_cast<int64_t>(wave.ones) * bit_period_ns, E};
+  if (P <= 0 || E <= 0 || w.C <= 0 || wave.ones == 0 || wave.ones >= wave.length) return v;
+  // Extremes: the plateau's centre and the trough's, each +-1 ns for the rounding of c.
+  const int64_t c = w.brightest(), half = w.C / 2;
+  int64_t brightest = c, darkest = c + half;
+  for (int64_t k = -1; k <= 1; ++k) {
+    if (w.lit(c + k) > w.lit(brightest)) brightest = c + k;
+    if (w.lit(c + half + k) < w.lit(darkest)) darkest = c + half + k;
   }
-  v.swing_percent = static_cast<uint32_t>((most - least) * 100 / E);
+  v.swing_percent = static_cast<uint32_t>((w.lit(brightest) - w.lit(darkest)) * 100 / E);
+  if (w.dark(brightest)) {  // dark at every phase
+    v.dark_frames = dark_cap + 1;
+    return v;
+  }
+  if (!w.dark(darkest)) return v;  // never dark
+  // b: the first dark phase after the plateau (bisection on the falling side).
+  int64_t lo = brightest, hi = darkest;
+  while (hi - lo > 1) {
+    const int64_t mid = lo + (hi - lo) / 2;
+    (w.dark(mid) ? hi : lo) = mid;
+  }
+  const int64_t b = hi;
+  // Any run of dark frames s0 + kP, slid back in phase until one frame reaches
+  // the arc's start b, stays dark (frames leave the arc only through b) and may
+  // only grow: the longest run is the longest through a frame at phase b,
+  // counted forwards and backwards from it. Exact, for every phase at once.
+  uint32_t run = 1;
+  for (int64_t k = 1; run <= dark_cap && w.dark(b + k * P); ++k) ++run;
+  for (int64_t k = 1; run <= dark_cap && w.dark(b - k * P); ++k) ++run;
+  v.dark_frames = run;
   return v;
 }
 

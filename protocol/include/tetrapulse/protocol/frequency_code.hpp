@@ -47,7 +47,7 @@ uint32_t apparent_frequency_q32(int64_t frame_period_ns, int64_t code_period_ns)
 uint32_t frequency_drift_q32(int64_t frame_period_ns, int64_t code_period_ns, uint32_t ppm);
 
 // How the camera sees one square wave, over every phase of the board against
-// the camera (kPhaseGrid phases per code period):
+// the camera (exactly, to the nanosecond of phase):
 struct WaveVisibility {
   // Longest run of consecutive frames whose exposure is lit less than half of
   // its duration (the marker looks dark with on_off modulation); capped at cap + 1.
@@ -56,7 +56,6 @@ struct WaveVisibility {
   // phase, percent of the exposure: what a reader sees of the modulation.
   uint32_t swing_percent = 0;
 };
-constexpr uint32_t kPhaseGrid = 256;
 WaveVisibility wave_visibility(const CameraTiming& camera, int64_t bit_period_ns, SquareWave wave,
                                uint32_t dark_cap);
 
