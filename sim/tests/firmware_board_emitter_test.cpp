@@ -13,7 +13,6 @@
 namespace tetrapulse::sim {
 namespace {
 
-constexpr int64_t kMs = 1'000'000;
 constexpr int64_t kSecond = 1'000'000'000;
 
 Scenario builtin(const std::string& name) {

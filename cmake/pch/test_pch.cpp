@@ -1,0 +1,1 @@
+// Compiles the tests' precompiled header (cmake/TetrapulseTestPch.cmake); defines nothing.
