@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tetrapulse/localizer/code_clock.hpp"
+
 namespace tetrapulse {
 
 Eigen::Vector2d BlobTrack::predict(int64_t t_ns) const {
@@ -20,17 +22,38 @@ int longest_zero_run(const Code& code) {
   return std::min(longest, static_cast<int>(code.length));
 }
 
-int coast_frames_for(const TargetsFile& targets, int64_t frame_period_ns) {
+int longest_dark_frames(const Code& code, int64_t bit_period_ns, int64_t frame_period_ns, int64_t exposure_ns,
+                        int cap) {
+  if (code.length == 0 || bit_period_ns <= 0 || frame_period_ns <= 0 || exposure_ns <= 0) return 0;
+  constexpr int kPhases = 512;
+  const Modulation on_off{ModulationKind::kOnOff, 0.0};
+  const std::optional<Code> played = code;
+  const int64_t period = bit_period_ns * int64_t(code.length);
+  int longest = 0;
+  for (int k = 0; k < kPhases && longest < cap; ++k) {
+    const CodeClock clock{-(period * k) / kPhases, bit_period_ns, 1.0};
+    int run = 0;
+    while (run < cap && mean_emission(clock, on_off, played, run * frame_period_ns, exposure_ns) < 0.5) ++run;
+    longest = std::max(longest, run);
+  }
+  return std::min(cap, longest + (longest > 0 ? 1 : 0));
+}
+
+int coast_frames_for(const TargetsFile& targets, int64_t frame_period_ns, int64_t exposure_ns) {
   if (targets.modulation.kind != ModulationKind::kOnOff) return 1;
-  const double frames_per_bit =
-      frame_period_ns > 0 ? double(targets.timebase.bit_period_ns) / double(frame_period_ns) : 1.0;
+  const int64_t T = targets.timebase.bit_period_ns;
+  const double frames_per_bit = frame_period_ns > 0 ? double(T) / double(frame_period_ns) : 1.0;
   int frames = 1;
   for (const Target& target : targets.targets)
     for (const Marker& marker : target.markers) {
       if (!marker.code) continue;
       const int run = longest_zero_run(*marker.code);
       if (run == 0) continue;
-      frames = std::max(frames, static_cast<int>(std::ceil(run * frames_per_bit - 1e-9)) + 1);
+      if (exposure_ns > 0 && frames_per_bit < 1.0) {
+        frames = std::max(frames, longest_dark_frames(*marker.code, T, frame_period_ns, exposure_ns) + 1);
+      } else {
+        frames = std::max(frames, static_cast<int>(std::ceil(run * frames_per_bit - 1e-9)) + 1);
+      }
     }
   return frames;
 }

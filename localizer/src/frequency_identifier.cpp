@@ -142,6 +142,15 @@ std::vector<RigCode> rig_codes(const TargetsFile& targets) {
   return out;
 }
 
+std::vector<std::array<int, 4>> frequency_code_of(const TargetsFile& targets, const std::vector<RigCode>& codes) {
+  std::vector<std::array<int, 4>> out(targets.targets.size(), std::array<int, 4>{-1, -1, -1, -1});
+  for (size_t c = 0; c < codes.size(); ++c)
+    if (codes[c].frequency)
+      for (const auto& [t, m] : codes[c].markers)
+        if (t < out.size() && m < 4) out[t][m] = int(c);
+  return out;
+}
+
 FrequencyIdentifier::FrequencyIdentifier(const TargetsFile& targets, FrequencyIdentifierOptions options)
     : options_(options), timebase_(targets.timebase), codes_(rig_codes(targets)) {}
 

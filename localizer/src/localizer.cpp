@@ -50,13 +50,20 @@ constexpr int64_t kSearchTagBase = -2;  // search ROIs: tag = kSearchTagBase - (
 // in frames, + 1. A marker in a 0 bit is dark (on_off) or dim (two_level, easily
 // below the locating threshold next to bright lamps): some frame of the burst
 // sees every marker lit, whatever its code.
-int search_burst_frames(const TargetsFile& targets, int64_t frame_period_ns) {
+int search_burst_frames(const TargetsFile& targets, int64_t frame_period_ns, int64_t exposure_ns) {
   if (targets.modulation.kind == ModulationKind::kConstant || frame_period_ns <= 0) return 1;
-  const double frames_per_bit = double(targets.timebase.bit_period_ns) / double(frame_period_ns);
+  const int64_t T = targets.timebase.bit_period_ns;
+  const double frames_per_bit = double(T) / double(frame_period_ns);
   int frames = 1;
   for (const Target& target : targets.targets)
-    for (const Marker& marker : target.markers)
-      if (marker.code) frames = std::max(frames, int(std::ceil(longest_zero_run(*marker.code) * frames_per_bit - 1e-9)) + 1);
+    for (const Marker& marker : target.markers) {
+      if (!marker.code) continue;
+      // Bits shorter than a frame (frequency codes): the dark frames come from aliasing.
+      const int dark = frames_per_bit < 1.0
+                           ? longest_dark_frames(*marker.code, T, frame_period_ns, exposure_ns)
+                           : int(std::ceil(longest_zero_run(*marker.code) * frames_per_bit - 1e-9));
+      frames = std::max(frames, dark + 1);
+    }
   return std::min(frames, 16);
 }
 
@@ -68,12 +75,15 @@ struct Localizer::State {
         targets(file),
         options(opts),
         extractor(opts.blobs),
-        identifier(camera, targets, identification_options(opts)) {
+        identifier(camera, targets, identification_options(opts)),
+        rig(rig_codes(targets)),
+        frequency_of(frequency_code_of(targets, rig)) {
     for (size_t i = 0; i < targets.targets.size(); ++i) target_tracks.push_back(TargetTrack{});
     for (TargetTrack& t : target_tracks) t.predictor = PosePredictor(options.prediction);
     options.pose.solver = options.p3p;
     coded = targets.modulation.kind != ModulationKind::kConstant;
     free_running = coded && !targets.timebase.synchronized;
+    for (const RigCode& c : rig) frequency_coded = frequency_coded || c.frequency;
   }
 
   static IdentificationOptions identification_options(const LocalizerOptions& o) {
@@ -90,6 +100,7 @@ struct Localizer::State {
   tl::expected<void, LocalizerError> extract(const cv::Mat& image);
   void maintain_assignments();
   void read_bits();
+  void read_frequencies();
   void verify_codes(int64_t mid);
   void identify(int64_t mid);
   std::vector<TargetPose> solve_poses(int64_t mid);
@@ -105,6 +116,13 @@ struct Localizer::State {
   }
   bool needs_search() const;
   void re_estimate_clock(size_t t, int64_t mid);
+  // The frequency code a track carries (rig index), -1 while none is decided or it is no frequency code.
+  int frequency_code(int64_t track_id);
+  bool has_binary_codes(size_t t) const {
+    for (int m = 0; m < 4; ++m)
+      if (targets.targets[t].markers[size_t(m)].code && frequency_of[t][size_t(m)] < 0) return true;
+    return false;
+  }
   size_t bits_from(const BlobTrack& track, int samples) const {
     const size_t n = track.history().size();
     return n > size_t(samples) ? n - size_t(samples) : 0;
@@ -123,6 +141,10 @@ struct Localizer::State {
   std::vector<TrackGate> gates;
   std::vector<TargetTrack> target_tracks;
   std::unordered_map<int64_t, TrackBits> bits;
+  std::vector<RigCode> rig;                      // the rig's distinct codes (frequency_identifier.hpp)
+  std::vector<std::array<int, 4>> frequency_of;  // each marker's frequency code in `rig` (-1: binary or none)
+  bool frequency_coded = false;                  // some marker plays a frequency code
+  std::unordered_map<int64_t, FrequencyIdentifier> frequencies;  // per track, while frequency_coded
   struct Pending {
     Eigen::Vector2d centroid;
     size_t target;
@@ -345,6 +367,23 @@ void Localizer::State::read_bits() {
   }
 }
 
+void Localizer::State::read_frequencies() {
+  if (!frequency_coded) return;
+  for (auto it = frequencies.begin(); it != frequencies.end();) it = tracker.find(it->first) ? std::next(it) : frequencies.erase(it);
+  for (const BlobTrack& track : tracker.tracks()) {
+    const TrackSample& newest = track.history().newest();
+    if (newest.frame != stamp.frame) continue;
+    frequencies.try_emplace(track.id(), targets, options.frequency).first->second.push(newest);
+  }
+}
+
+int Localizer::State::frequency_code(int64_t track_id) {
+  const auto it = frequencies.find(track_id);
+  if (it == frequencies.end()) return -1;
+  const FrequencyDecision& d = it->second.decision();
+  return d.kind == FrequencyDecision::Kind::kFrequency ? d.code : -1;
+}
+
 void Localizer::State::re_estimate_clock(size_t t, int64_t mid) {
   TargetTrack& tt = target_tracks[t];
   const Target& target = targets.targets[t];
@@ -364,7 +403,7 @@ void Localizer::State::re_estimate_clock(size_t t, int64_t mid) {
     clock.origin_ns = tt.clock.origin_ns + k * T / (2 * kSteps);
     for (int m = 0; m < 4; ++m) {
       const BlobTrack* track = tracker.find(tt.track_of[size_t(m)]);
-      if (!track || !target.markers[size_t(m)].code) continue;
+      if (!track || !target.markers[size_t(m)].code || frequency_of[t][size_t(m)] >= 0) continue;
       cost[size_t(k + kSteps)] +=
           match_code(track->history(), bits[track->id()], bits_from(*track, needed), clock,
                      *target.markers[size_t(m)].code)
@@ -397,11 +436,21 @@ void Localizer::State::verify_codes(int64_t mid) {
   for (size_t t = 0; t < target_tracks.size(); ++t) {
     TargetTrack& tt = target_tracks[t];
     if (!tt.identified) continue;
-    if (free_running) re_estimate_clock(t, mid);
+    if (free_running && has_binary_codes(t)) re_estimate_clock(t, mid);
     for (int m = 0; m < 4; ++m) {
       const Marker& marker = targets.targets[t].markers[size_t(m)];
       const BlobTrack* track = tracker.find(tt.track_of[size_t(m)]);
       if (!track || !marker.code) continue;
+      if (const int expected = frequency_of[t][size_t(m)]; expected >= 0) {
+        // A frequency track is judged over its whole window, so now and then: one
+        // that now carries another code (or a binary one) leaves the marker.
+        if ((stamp.frame + track->id()) % std::max(1, options.frequency_check_frames) != 0) continue;
+        const auto f = frequencies.find(track->id());
+        if (f == frequencies.end()) continue;
+        const FrequencyDecision& d = f->second.decision();
+        if (d.decided() && (d.kind != FrequencyDecision::Kind::kFrequency || d.code != expected)) tt.track_of[size_t(m)] = -1;
+        continue;
+      }
       const CodeClock clock{tt.clock.origin_ns, tt.clock.bit_period_ns, 1.0};
       const CodeMatch check = match_code(track->history(), bits[track->id()], bits_from(*track, options.verify_samples),
                                          clock, *marker.code);
@@ -430,6 +479,7 @@ void Localizer::State::identify(int64_t mid) {
     const TrackSample& newest = track.history().newest();
     c.pixel = newest.frame == stamp.frame && newest.detected ? newest.centroid : track.predict(mid);
     c.radius_px = track.last_blob().radius;
+    if (frequency_coded) c.frequency_code = frequency_code(track.id());
     candidates.push_back(c);
   }
   if (candidates.size() < 4) return;
@@ -524,8 +574,9 @@ tl::expected<std::vector<TargetPose>, LocalizerError> Localizer::State::process(
   if (frames > 0 && !coast_set) {
     // On-off codes darken a marker for a run of 0 bits: its track must outlive it.
     frame_period_ns = start - previous_start;
-    tracker.set_max_coast_frames(std::max(tracker.config().max_coast_frames, coast_frames_for(targets, frame_period_ns)));
-    search_burst = search_burst_frames(targets, frame_period_ns);
+    tracker.set_max_coast_frames(
+        std::max(tracker.config().max_coast_frames, coast_frames_for(targets, frame_period_ns, exposure)));
+    search_burst = search_burst_frames(targets, frame_period_ns, exposure);
     search_burst_left = search_burst - 1;  // the first burst began with frame 0
     coast_set = true;
   }
@@ -537,6 +588,7 @@ tl::expected<std::vector<TargetPose>, LocalizerError> Localizer::State::process(
   tracker.update(stamp, extraction, gates);
   maintain_assignments();
   read_bits();
+  read_frequencies();
   verify_codes(mid);
   identify(mid);
   auto poses = solve_poses(mid);

@@ -32,9 +32,9 @@ ErrorStats ErrorStats::of(std::vector<double> values) {
 }
 
 int markers_lit_in_view(const CameraModel& camera, const TargetsFile& targets, const Target& target,
-                        const Pose& pose, int64_t start_ns, int64_t exposure_ns) {
-  const bool phase_known = targets.timebase.synchronized;
-  const CodeClock clock = CodeClock::from(targets.timebase);
+                        const Pose& pose, int64_t start_ns, int64_t exposure_ns, const CodeClock* board_clock) {
+  const bool phase_known = targets.timebase.synchronized || board_clock != nullptr;
+  const CodeClock clock = board_clock ? *board_clock : CodeClock::from(targets.timebase);
   int count = 0;
   for (const Marker& m : target.markers) {
     const Eigen::Vector3d p = pose.apply(m.position_m);
@@ -111,6 +111,8 @@ DatasetResult<Evaluation> evaluate_poses(const RigDataset& dataset, const std::v
   for (const Target& target : tf.targets) {
     TargetEvaluation e;
     e.target = target.id;
+    const auto known_clock = options.board_clocks.find(target.id);
+    const CodeClock* board_clock = known_clock != options.board_clocks.end() ? &known_clock->second : nullptr;
     std::vector<double> position, orientation;
     std::vector<Episode> episodes;
     int64_t last_visible = std::numeric_limits<int64_t>::min() / 2;
@@ -134,7 +136,7 @@ DatasetResult<Evaluation> evaluate_poses(const RigDataset& dataset, const std::v
         }
       }
       if (gt == truth.end()) continue;
-      if (markers_lit_in_view(camera, tf, target, gt->second, f.timestamp_ns, f.exposure_ns) < 3) continue;
+      if (markers_lit_in_view(camera, tf, target, gt->second, f.timestamp_ns, f.exposure_ns, board_clock) < 3) continue;
       visible.emplace_back(f.frame, has_row);
       if (f.frame - last_visible > out.episode_gap_frames) episodes.push_back(Episode{f.frame, f.frame, {}});
       episodes.back().end = f.frame;

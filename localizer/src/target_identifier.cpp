@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 
+#include "tetrapulse/localizer/frequency_identifier.hpp"
 #include "tetrapulse/localizer/p4p.hpp"
 #include "tetrapulse/localizer/pose_refinement.hpp"
 
@@ -50,13 +51,15 @@ TargetIdentifier::TargetIdentifier(const CameraModel& camera, const TargetsFile&
     : camera_(camera), targets_(targets), options_(options) {
   coded_ = targets.modulation.kind != ModulationKind::kConstant;
   free_running_ = coded_ && !targets.timebase.synchronized;
-  for (const Target& t : targets.targets) {
+  frequency_of_ = frequency_code_of(targets, rig_codes(targets));
+  for (size_t ti = 0; ti < targets.targets.size(); ++ti) {
+    const Target& t = targets.targets[ti];
     std::array<int, 4> of{-1, -1, -1, -1};
     double extent = 0;
     for (size_t m = 0; m < 4; ++m) {
       for (size_t k = 0; k < 4; ++k)
         extent = std::max(extent, (t.markers[m].position_m - t.markers[k].position_m).norm());
-      if (!coded_ || !t.markers[m].code) continue;
+      if (!coded_ || !t.markers[m].code || frequency_of_[ti][m] >= 0) continue;
       const auto it = std::find(codes_.begin(), codes_.end(), *t.markers[m].code);
       of[m] = int(it - codes_.begin());
       if (it == codes_.end()) codes_.push_back(*t.markers[m].code);
@@ -68,6 +71,12 @@ TargetIdentifier::TargetIdentifier(const CameraModel& camera, const TargetsFile&
 
 TargetIdentifier::~TargetIdentifier() = default;
 TargetIdentifier::TargetIdentifier(TargetIdentifier&&) noexcept = default;
+
+bool TargetIdentifier::has_binary_codes(size_t target) const {
+  for (int c : code_of_[target])
+    if (c >= 0) return true;
+  return false;
+}
 
 double TargetIdentifier::allowed_errors(int counted) const {
   return std::floor(double(counted) / double(std::max(options_.bits_per_error, 1)));
@@ -158,8 +167,11 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
     const std::array<int, 4>& code = code_of_[t];
     // Candidates of each marker: tracks whose bits do not rule its code out.
     std::array<std::vector<int>, 4> candidates;
+    const std::array<int, 4>& frequency = frequency_of_[t];
     for (size_t m = 0; m < 4; ++m)
       for (size_t i = 0; i < n; ++i) {
+        // A frequency code's marker takes exactly its tracks; a binary one none of them.
+        if (frequency[m] >= 0 ? tracks[i].frequency_code != frequency[m] : tracks[i].frequency_code >= 0) continue;
         if (code[m] >= 0) {
           const TrackCodes& tc = track_codes_[i];
           const int counted = free_running_ ? 0 : tc.matches[size_t(code[m])].counted;
@@ -238,49 +250,102 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
 
   std::vector<char> track_blocked(tracks.size(), 0), target_blocked(targets_.targets.size(), 0);
   const double margin = coded_ ? options_.code_margin : std::numeric_limits<double>::infinity();
+  for (auto& [key, e] : geometry_evidence_) e.touched = false;
   for (size_t i = 0; i < hypotheses_.size(); ++i) {
     Hypothesis& h = hypotheses_[i];
     if (target_blocked[h.target]) continue;
     if (std::any_of(h.track.begin(), h.track.end(), [&](int k) { return track_blocked[size_t(k)]; })) continue;
-    if (coded_) {
-      if (h.codes.counted < options_.min_bits || h.cost > allowed_errors(h.codes.counted)) continue;
-      bool thin = false;
-      for (size_t m = 0; m < 4; ++m) {
-        if (code_of_[h.target][m] < 0) continue;
-        const TrackCodes& tc = track_codes_[size_t(h.track[m])];
-        const CodeMatch& mm = free_running_
-                                  ? tc.phases[size_t(code_of_[h.target][m])][size_t(h.phase) %
-                                                                              tc.phases[size_t(code_of_[h.target][m])].size()]
-                                  : tc.matches[size_t(code_of_[h.target][m])];
-        thin = thin || mm.counted < options_.min_bits_per_track;
-      }
-      if (thin) continue;
-    }
-    const bool geometry_ok = geometry(tracks, &h);
-    if (!geometry_ok) continue;
+    if (!codes_accept(h) || !geometry(tracks, &h)) continue;
     // Rivals: every other hypothesis touching this one's target or tracks that the
     // codes do not clearly reject and whose geometry is about as good.
-    bool ambiguous = h.shifted_cost < h.cost + margin;
-    for (size_t j = 0; j < hypotheses_.size() && !ambiguous; ++j) {
+    const bool code_ambiguous = h.shifted_cost < h.cost + margin;
+    std::vector<size_t> group{i};
+    for (size_t j = 0; j < hypotheses_.size() && !code_ambiguous; ++j) {
       Hypothesis& r = hypotheses_[j];
       if (!(r.cost < h.cost + margin)) break;  // sorted by cost
       if (j == i || !h.shares(r)) continue;
-      ambiguous = geometry(tracks, &r) && r.rms_px < h.rms_px + options_.geometry_margin_px;
+      if (geometry(tracks, &r) && r.rms_px < h.rms_px + options_.geometry_margin_px) group.push_back(j);
     }
     target_blocked[h.target] = 1;
     for (int k : h.track) track_blocked[size_t(k)] = 1;
-    if (ambiguous) continue;
+    if (code_ambiguous) continue;
+    size_t chosen = i;
+    if (group.size() > 1) {
+      // Too close to call in this frame: the residuals of the same hypotheses over
+      // the frames they have lasted decide, or the wait goes on.
+      const auto winner = geometry_winner(tracks, group);
+      if (!winner) continue;
+      chosen = *winner;
+      const Hypothesis& w = hypotheses_[chosen];
+      target_blocked[w.target] = 1;
+      for (int k : w.track) track_blocked[size_t(k)] = 1;
+      if (!codes_accept(w)) continue;
+    }
+    const Hypothesis& accepted = hypotheses_[chosen];
     Identification id;
-    id.target = h.target;
-    for (size_t m = 0; m < 4; ++m) id.track_of[m] = tracks[size_t(h.track[m])].track->id();
-    id.pose = h.pose;
-    id.rms_px = h.rms_px;
-    id.codes = h.codes;
+    id.target = accepted.target;
+    for (size_t m = 0; m < 4; ++m) id.track_of[m] = tracks[size_t(accepted.track[m])].track->id();
+    id.pose = accepted.pose;
+    id.rms_px = accepted.rms_px;
+    id.codes = accepted.codes;
     id.clock = CodeClock::from(targets_.timebase);
-    if (free_running_) id.clock.origin_ns = phase_origin(0, targets_.timebase.bit_period_ns, options_.phase_steps, h.phase);
+    if (free_running_) {
+      id.clock.origin_ns = phase_origin(0, targets_.timebase.bit_period_ns, options_.phase_steps, accepted.phase);
+    }
     out.push_back(id);
   }
+  // Evidence lasts while its hypothesis is weighed frame after frame.
+  for (auto it = geometry_evidence_.begin(); it != geometry_evidence_.end();)
+    it = it->second.touched ? std::next(it) : geometry_evidence_.erase(it);
   return out;
+}
+
+bool TargetIdentifier::codes_accept(const Hypothesis& h) const {
+  if (!coded_ || !has_binary_codes(h.target)) return true;
+  if (h.codes.counted < options_.min_bits || h.cost > allowed_errors(h.codes.counted)) return false;
+  for (size_t m = 0; m < 4; ++m) {
+    const int c = code_of_[h.target][m];
+    if (c < 0) continue;
+    const TrackCodes& tc = track_codes_[size_t(h.track[m])];
+    const CodeMatch& mm =
+        free_running_ ? tc.phases[size_t(c)][size_t(h.phase) % tc.phases[size_t(c)].size()] : tc.matches[size_t(c)];
+    if (mm.counted < options_.min_bits_per_track) return false;
+  }
+  return true;
+}
+
+std::optional<size_t> TargetIdentifier::geometry_winner(const std::vector<CandidateTrack>& tracks,
+                                                        const std::vector<size_t>& group) {
+  std::vector<const GeometryEvidence*> evidence;
+  for (size_t j : group) {
+    const Hypothesis& h = hypotheses_[j];
+    GeometryKey key{h.target, {}};
+    for (size_t m = 0; m < 4; ++m) key.second[m] = tracks[size_t(h.track[m])].track->id();
+    GeometryEvidence& e = geometry_evidence_[key];
+    if (!e.touched) {
+      e.ssr_px2 += 4 * h.rms_px * h.rms_px;
+      ++e.frames;
+      e.touched = true;
+    }
+    evidence.push_back(&e);
+  }
+  size_t best = 0;
+  for (size_t k = 1; k < group.size(); ++k)
+    if (evidence[k]->mean() < evidence[best]->mean()) best = k;
+  const GeometryEvidence& b = *evidence[best];
+  if (b.frames < options_.min_geometry_frames) return std::nullopt;
+  // Gaussian pixel noise sigma, from the best hypothesis' residuals (2 degrees of
+  // freedom a frame: 8 coordinates, 6 pose parameters), never below the floor.
+  const double sigma2 = std::max(b.ssr_px2 / (2.0 * b.frames), options_.geometry_noise_floor_px * options_.geometry_noise_floor_px);
+  for (size_t k = 0; k < group.size(); ++k) {
+    if (k == best) continue;
+    const GeometryEvidence& r = *evidence[k];
+    const int frames = std::min(b.frames, r.frames);
+    if (frames < options_.min_geometry_frames) return std::nullopt;
+    const double nats = frames * (r.mean() - b.mean()) / (2 * sigma2);
+    if (nats < options_.min_geometry_evidence) return std::nullopt;
+  }
+  return group[best];
 }
 
 }  // namespace tetrapulse

@@ -1,6 +1,7 @@
 #include "scenario_run.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <filesystem>
 
@@ -145,7 +146,19 @@ tl::expected<ScenarioRun, std::string> run_scenario(const sim::Scenario& scenari
     return DatasetResult<void>{};
   });
   if (!localized) return tl::unexpected(localized.error().what());
-  auto evaluation = evaluate_poses(*dataset, run.poses, "poses");
+  // The simulation knows the free-running boards' clocks, b(t) = offset + t (1 + ppm 1e-6)
+  // (board_clock.hpp): coverage then counts the frames whose markers are truly lit.
+  EvaluationOptions evaluation_options;
+  const Timebase& timebase = scenario.targets.timebase;
+  for (size_t t = 0; t < scenario.simulation.size() && t < scenario.targets.targets.size(); ++t) {
+    const sim::BoardClockSpec& c = scenario.simulation[t].clock;
+    if (!c.free_running) continue;
+    const double rate = 1.0 + c.drift_ppm * 1e-6;
+    const double origin = double(timebase.epoch_ns - c.offset_ns) / rate;
+    evaluation_options.board_clocks[scenario.targets.targets[t].id] =
+        CodeClock{int64_t(std::llround(origin)), timebase.bit_period_ns, rate};
+  }
+  auto evaluation = evaluate_poses(*dataset, run.poses, "poses", evaluation_options);
   if (!evaluation) return tl::unexpected(evaluation.error().what());
   run.evaluation = *evaluation;
 

@@ -95,12 +95,22 @@ struct BlobTrackerConfig {
 // Longest cyclic run of 0 bits of `code` (its length when it has no 1).
 int longest_zero_run(const Code& code);
 
+// Longest run of frames (period frame_period_ns, exposure exposure_ns) in which
+// `code` played on_off with bit period bit_period_ns is lit less than half of
+// an exposure, over every phase of the code (sampled: 512 phases per code
+// period, + 1 frame for a phase between them), at most `cap`. For codes whose
+// bits are shorter than a frame (frequency codes) the dark frames come from
+// aliasing, not from the length of a zero run.
+int longest_dark_frames(const Code& code, int64_t bit_period_ns, int64_t frame_period_ns, int64_t exposure_ns,
+                        int cap = 32);
+
 // Coasting needed by the targets' codes when a frame lasts frame_period_ns:
 // on_off modulation darkens a marker for its longest zero run, which spans
 // ceil(run * bit_period / frame_period) frames; + 1 for a frame straddling
-// the run's ends. 1 for two_level and constant modulation (markers never
-// vanish). frame_period_ns <= 0 is read as one frame per bit.
-int coast_frames_for(const TargetsFile& targets, int64_t frame_period_ns);
+// the run's ends. With exposure_ns > 0, codes whose bits are shorter than a
+// frame take longest_dark_frames() + 1 instead. 1 for two_level and constant
+// modulation (markers never vanish). frame_period_ns <= 0 is read as one frame per bit.
+int coast_frames_for(const TargetsFile& targets, int64_t frame_period_ns, int64_t exposure_ns = 0);
 
 class BlobTracker {
  public:

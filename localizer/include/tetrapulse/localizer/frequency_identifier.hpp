@@ -34,6 +34,7 @@
 // does not say kFrequency, and a frequency code only on kFrequency.
 //
 // Times are integer nanoseconds of rig time; intensities in any linear unit.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -79,6 +80,9 @@ struct RigCode {
 // The distinct codes of `targets` (a code's rotations are the same code when
 // the boards run free; they are kept apart when synchronized).
 std::vector<RigCode> rig_codes(const TargetsFile& targets);
+// For each target (targets.yaml order) and marker, the index in `codes` of the
+// frequency code it plays; -1 for a binary code or none.
+std::vector<std::array<int, 4>> frequency_code_of(const TargetsFile& targets, const std::vector<RigCode>& codes);
 
 struct FrequencyDecision {
   enum class Kind : uint8_t { kUnknown, kFrequency, kBinary };

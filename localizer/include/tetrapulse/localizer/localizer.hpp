@@ -11,7 +11,10 @@
 //      together with geometry (target_identifier.hpp); a tracked target's tracks
 //      keep being checked against their codes, and a track whose bits stop
 //      matching is dropped from it; a marker that reappears near its predicted
-//      pixel rejoins by geometry and is then checked the same way;
+//      pixel rejoins by geometry and is then checked the same way. Frequency
+//      codes (square waves) are told from the whole exposure-integrated light
+//      of a track (frequency_identifier.hpp), free-running or on the time base,
+//      never from single bits, and checked again the same way once claimed;
 //   5. pose from the identified markers seen this frame (marker_pose.hpp).
 // Knows nothing of boards or buses: only pixels, the targets file and the rig
 // timestamps of exposures. Poses as pose.hpp (p_C = R p_T + t, metres, OpenCV
@@ -29,6 +32,7 @@
 #include "tetrapulse/localizer/blob_extractor.hpp"
 #include "tetrapulse/localizer/blob_tracker.hpp"
 #include "tetrapulse/localizer/camera_model.hpp"
+#include "tetrapulse/localizer/frequency_identifier.hpp"
 #include "tetrapulse/localizer/marker_pose.hpp"
 #include "tetrapulse/localizer/pose_predictor.hpp"
 #include "tetrapulse/localizer/target_identifier.hpp"
@@ -43,6 +47,8 @@ struct LocalizerOptions {
   MarkerPoseOptions pose;           // sphere-centroid model on, max RMS 1.5 px
   IdentificationOptions identification;
   BitReading bits;
+  FrequencyIdentifierOptions frequency;  // tracks of frequency codes
+  int frequency_check_frames = 8;        // a claimed frequency track's code is checked this often
   BlobExtractorConfig blobs;
   // Whole-image search every this many frames while something is not tracked.
   int full_search_interval = 4;

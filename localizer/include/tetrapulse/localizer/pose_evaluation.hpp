@@ -9,7 +9,9 @@
 // its image radius inside the border. Lit: the contract's mean emission over the
 // exposure (code_clock.hpp) is at least half of full, or the modulation is
 // two_level or constant (a 0 bit still shines), or the boards run free (their
-// phase is unknown, so on_off markers count as lit). Occlusions are not in a
+// phase is unknown, so on_off markers count as lit) unless the evaluation is
+// given the boards' true clocks (EvaluationOptions::board_clocks: a simulation
+// knows them), which then say when a marker is lit. Occlusions are not in a
 // dataset: an occluded marker counts as visible.
 // Identification latency: frames from the start of each episode of visibility
 // (a visible frame after more than `episode_gap_frames` frame numbers without
@@ -23,10 +25,12 @@
 // pose than gross_position (absolute or relative to the distance) or
 // gross_orientation: the pose of something else.
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "tetrapulse/localizer/code_clock.hpp"
 #include "tetrapulse/localizer/dataset_io.hpp"
 #include "tetrapulse/localizer/rig_dataset.hpp"
 
@@ -60,6 +64,9 @@ struct EvaluationOptions {
   double gross_position_relative = 0.1;  // of the target's distance
   double gross_orientation_rad = 20 * M_PI / 180;
   int64_t episode_gap_frames = 0;        // 0: one code length in frames (at least 10)
+  // True code clocks of free-running boards, by target id (rig time to bits as
+  // code_clock.hpp); targets not in it count their on_off markers as lit.
+  std::map<int, CodeClock> board_clocks;
 };
 
 struct Evaluation {
@@ -74,8 +81,10 @@ DatasetResult<Evaluation> evaluate_poses(const RigDataset& dataset, const std::v
                                          const std::string& poses_name, const EvaluationOptions& options = {});
 
 // How many of a target's markers are lit and in view (as above) under `pose`
-// during [start_ns, start_ns + exposure_ns).
+// during [start_ns, start_ns + exposure_ns); `board_clock`: the board's true
+// clock when known (free-running boards).
 int markers_lit_in_view(const CameraModel& camera, const TargetsFile& targets, const Target& target,
-                        const Pose& pose, int64_t start_ns, int64_t exposure_ns);
+                        const Pose& pose, int64_t start_ns, int64_t exposure_ns,
+                        const CodeClock* board_clock = nullptr);
 
 }  // namespace tetrapulse

@@ -7,6 +7,12 @@
 //             free-running boards under one clock per target whose phase is
 //             searched (phase_steps per bit over the whole code cycle, so any
 //             cyclic shift is tried); constant modulation has no codes.
+//             Frequency codes (square waves, frequency_identifier.hpp) are not
+//             read bit by bit: a marker playing one takes only tracks that the
+//             frequency identifier gave exactly that code, and a marker playing
+//             a binary code never takes such a track (the two families are
+//             never confused). A target whose markers all play frequency codes
+//             needs no read bits; geometry then names its markers.
 //   geometry  the tracks' pixels this frame must be explained by one pose of the
 //             target: known-correspondence P4P (p4p.hpp), refined, with an RMS
 //             reprojection error of at most max_rms_px.
@@ -18,13 +24,24 @@
 // between targets of equal geometry, geometry decides between the markers of
 // targets whose markers share a code, and both must agree. Ambiguity means
 // waiting for more frames, never guessing.
+// Rivals that geometry cannot tell apart in one frame (a target seen from
+// straight above, a permutation of its markers fitting within a pixel) are
+// weighed over the frames they last: each hypothesis of the same tracks sums its
+// squared residuals (SSR, px^2, four markers a frame); the one with the least
+// mean SSR wins when, for every rival,
+//   n (mean SSR_rival - mean SSR_best) / (2 sigma^2) >= min_geometry_evidence nats,
+//   sigma^2 = max(SSR_best / (2 n), geometry_noise_floor_px^2),
+// over n >= min_geometry_frames frames: the log-likelihood ratio under Gaussian
+// pixel noise whose level the best hypothesis' own residuals give.
 //
 // Hypotheses need four tracks; tracks too far apart for one target (judged from
 // their blob sizes and the marker diameter) are never combined.
 // Pixels in the OpenCV convention; poses as pose.hpp; times in rig-time ns.
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -51,6 +68,10 @@ struct IdentificationOptions {
   int phase_steps = 8;              // free-running phase search: phases per bit
   int max_samples = 48;             // newest samples of each track used
   size_t max_hypotheses = 20000;    // more combinations than this: wait for more bits
+  // Rivals close in geometry, weighed over frames (see above).
+  double min_geometry_evidence = 12.0;   // nats
+  int min_geometry_frames = 3;
+  double geometry_noise_floor_px = 0.05;
 };
 
 // A track as the identifier sees it this frame.
@@ -59,6 +80,7 @@ struct CandidateTrack {
   const TrackBits* bits = nullptr;                    // read bits of track->history()
   Eigen::Vector2d pixel = Eigen::Vector2d::Zero();    // blob this frame, or the track's prediction
   double radius_px = 0;                                // blob radius, for the size of its target
+  int frequency_code = -1;  // rig_codes() index of the frequency code this track carries (-1: none decided)
 };
 
 struct Identification {
@@ -87,11 +109,22 @@ class TargetIdentifier {
  private:
   struct Hypothesis;
   struct TrackCodes;
+  struct GeometryEvidence {
+    double ssr_px2 = 0;  // summed over `frames`
+    int frames = 0;
+    bool touched = false;  // in this call
+    double mean() const { return frames > 0 ? ssr_px2 / frames : 0; }
+  };
+  using GeometryKey = std::pair<size_t, std::array<int64_t, 4>>;  // target, track of each marker
   void score_tracks(const std::vector<CandidateTrack>& tracks);
   void enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted);
   void score_codes(Hypothesis* h) const;
   bool geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const;
   double allowed_errors(int counted) const;
+  bool has_binary_codes(size_t target) const;
+  bool codes_accept(const Hypothesis& h) const;
+  // Of hypotheses_[group], the one the residuals of many frames pick (see above), if any yet.
+  std::optional<size_t> geometry_winner(const std::vector<CandidateTrack>& tracks, const std::vector<size_t>& group);
 
   const CameraModel& camera_;
   const TargetsFile& targets_;
@@ -100,9 +133,11 @@ class TargetIdentifier {
   bool free_running_ = false;
   std::vector<Code> codes_;                       // distinct codes
   std::vector<std::array<int, 4>> code_of_;      // code index of each target's markers (-1: none)
+  std::vector<std::array<int, 4>> frequency_of_; // rig_codes() index of a marker's frequency code (-1: binary or none)
   std::vector<double> extent_ratio_;             // target's largest marker distance / marker radius
   std::vector<TrackCodes> track_codes_;
   std::vector<Hypothesis> hypotheses_;
+  std::map<GeometryKey, GeometryEvidence> geometry_evidence_;
   size_t last_hypotheses_ = 0;
 };
 
