@@ -17,6 +17,7 @@
 #include "demo_simulation.hpp"
 #include "evaluation_report.hpp"
 #include "exit_codes.hpp"
+#include "vision_commands.hpp"
 #include "pose_overlay.hpp"
 #include "progress_bar.hpp"
 #include "tetrapulse/localizer/frame_source.hpp"
@@ -201,7 +202,7 @@ int run_demo(const DemoArgs& a, const DemoSimulation& simulate) {
 
 void add_demo_command(CLI::App& app, int* result) {
   auto args = std::make_shared<DemoArgs>();
-  auto* cmd = app.add_subcommand("demo", "The virtual rig end to end: simulate, localize, evaluate, plot");
+  auto* cmd = app.add_subcommand("demo", vision_summary("demo"));
   cmd->add_option("--out", args->out, "Folder for datasets, poses, plots and the accuracy table")->capture_default_str();
   cmd->add_option("--seconds", args->seconds, "Seconds of each scenario to simulate")
       ->check(CLI::Range(0.1, 600.0))

@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "evaluation_report.hpp"
 #include "exit_codes.hpp"
+#include "vision_commands.hpp"
 #include "tetrapulse/localizer/pose_evaluation.hpp"
 
 namespace tetrapulse::cli {
@@ -83,7 +84,7 @@ int run_eval(const EvalArgs& a) {
 
 void add_eval_command(CLI::App& app, int* result) {
   auto args = std::make_shared<EvalArgs>();
-  auto* cmd = app.add_subcommand("eval", "Compare a poses file with its dataset's ground truth");
+  auto* cmd = app.add_subcommand("eval", vision_summary("eval"));
   cmd->add_option("dataset", args->dataset, "Rig dataset folder with groundtruth.csv")->required();
   cmd->add_option("poses", args->poses, "poses.csv written by tetrapulse localize")->required();
   cmd->add_flag("--json", args->json, "Print JSON instead of the table");

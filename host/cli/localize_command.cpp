@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "vision_commands.hpp"
 #include "progress_bar.hpp"
 #include "tetrapulse/localizer/frame_source.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
@@ -146,7 +147,7 @@ int run_localize(const LocalizeArgs& a) {
 
 void add_localize_command(CLI::App& app, int* result) {
   auto args = std::make_shared<LocalizeArgs>();
-  auto* cmd = app.add_subcommand("localize", "Identified 6D poses of the targets from images (poses.csv)");
+  auto* cmd = app.add_subcommand("localize", vision_summary("localize"));
   cmd->add_option("dataset", args->dataset,
                   "Rig dataset folder (with --video or --camera: where camera.yaml and targets.yaml are)");
   cmd->add_option("--out", args->out, "Poses file to write (\"-\": standard output)");

@@ -4,20 +4,20 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "vision_commands.hpp"
+#include "vision_forward.hpp"
 
 int main(int argc, char** argv) {
   using namespace tetrapulse::cli;
+  if (argc > 1 && vision_summary(argv[1]) != nullptr) return run_vision_program(argc, argv);
   CLI::App app{"tetrapulse: identified 6D poses of coded LED targets from one camera"};
   app.footer(kExitCodesHelp);
   app.require_subcommand(1);
   int result = kExitOk;
   add_version_command(app, &result);
   add_codebook_command(app, &result);
-  add_sim_command(app, &result);
   add_target_command(app, &result);
-  add_localize_command(app, &result);
-  add_eval_command(app, &result);
-  add_demo_command(app, &result);
+  add_vision_placeholders(app, argc, argv, &result);
   add_list_command(app, &result);
   add_info_command(app, &result);
   add_config_command(app, &result);

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "vision_commands.hpp"
 #include "tetrapulse/host/sim_rig.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 #include "tetrapulse/sim/dataset_simulation.hpp"
@@ -99,7 +100,7 @@ int run_sim(const SimArgs& a) {
 
 void add_sim_command(CLI::App& app, int* result) {
   auto args = std::make_shared<SimArgs>();
-  auto* cmd = app.add_subcommand("sim", "Render a rig dataset (images, frames.csv, ground truth) from a scenario");
+  auto* cmd = app.add_subcommand("sim", vision_summary("sim"));
   cmd->add_option("scenario", args->scenario, "A built-in scenario's name (--list) or a scenario YAML file");
   cmd->add_option("--out", args->out, "Dataset folder to write");
   cmd->add_option("--seed", args->seed, "Random seed (default: the scenario's)");

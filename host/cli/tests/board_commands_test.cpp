@@ -283,5 +283,29 @@ TEST(BoardCommands, EveryCommandHasHelp) {
   EXPECT_NE(config.out.find("--gpio-edge-numbering"), std::string::npos);
 }
 
+TEST(BoardCommands, VisionCommandsAreListedAndHandedToTheVisionProgram) {
+  CliTempDir dir("vision");
+  const CliRun help = run_cli(dir, "--help");
+  ASSERT_EQ(help.exit, kExitOk);
+  for (const char* command : {"sim", "localize", "eval", "demo", "list", "sync", "codebook", "target"})
+    EXPECT_NE(help.out.find(std::string("  ") + command + " "), std::string::npos) << command;
+  // Handed over with every argument: the vision program's own help and its usage errors.
+  const CliRun localize = run_cli(dir, "localize --help");
+  EXPECT_EQ(localize.exit, kExitOk);
+  EXPECT_NE(localize.out.find("--p3p"), std::string::npos) << localize.out;
+  EXPECT_EQ(run_cli(dir, "eval --no-such-option").exit, kExitUsage);
+  // Without tetrapulse-vision beside it: one line that names the program it looked for.
+  const std::string alone = dir.path("tetrapulse");
+  std::filesystem::copy_file(TETRAPULSE_CLI, alone);
+  std::filesystem::permissions(alone, std::filesystem::perms::owner_exec, std::filesystem::perm_options::add);
+  const std::string command = "'" + alone + "' sim paper-exp1 --out '" + dir.path("out") + "' 2>'" + dir.path("err") + "'";
+  const int status = std::system(command.c_str());
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, kExitFailure);
+  const std::string err = testing::slurp(dir.path("err"));
+  EXPECT_NE(err.find(dir.path("tetrapulse-vision")), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path("out")));
+}
+
 }  // namespace
 }  // namespace tetrapulse::cli
