@@ -149,7 +149,8 @@ TEST(ChooseImage, TakesTheImageLinkedForTheSlotThatIsNotRunning) {
   auto for_slot1_runner = choose_image(release, stm32_board(1, 1), "usb:A");
   ASSERT_TRUE(for_slot1_runner);
   EXPECT_EQ((*for_slot1_runner)->name, "fw-slot0.bin");
-  auto only_slot0 = choose_image({slot0}, stm32_board(1, 0), "usb:A");
+  const std::vector<FirmwareImage> just_slot0{slot0};
+  auto only_slot0 = choose_image(just_slot0, stm32_board(1, 0), "usb:A");
   ASSERT_FALSE(only_slot0);
   EXPECT_EQ(only_slot0.error().what(),
             "usb:A: no image fits: fw-slot0.bin: linked for 0x08020000, the board runs slot 0 and takes an image for "
@@ -164,7 +165,8 @@ TEST(ChooseImage, RefusesOtherModelsAndRevisions) {
   spec.load_address = 0x08040000;
   const FirmwareImage rev2 = image_of(spec, "rev2.bin");
   const FirmwareImage linux_image = image_of(TestImageSpec{}, "linux.bin");
-  auto r = choose_image({rev2, linux_image}, stm32_board(1, 0), "can:can0:4");
+  const std::vector<FirmwareImage> images{rev2, linux_image};
+  auto r = choose_image(images, stm32_board(1, 0), "can:can0:4");
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().kind, HostErrorKind::kImageRejected);
   EXPECT_EQ(r.error().what(),

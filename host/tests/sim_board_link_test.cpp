@@ -53,7 +53,8 @@ TEST(SimBoardLink, UpdatesTheSimulatedBoardToANewVersion) {
   spec.payload_size = 5000;
   auto image = check_firmware_image(sim_board::make_sim_image(spec), "sim-1.4.0.bin");
   ASSERT_TRUE(image) << image.error().what();
-  auto chosen = choose_image({*image}, *info, rig.board->name());
+  const std::vector<FirmwareImage> images{*image};
+  auto chosen = choose_image(images, *info, rig.board->name());
   ASSERT_TRUE(chosen) << chosen.error().what();
   auto report = update_firmware(*rig.board, **chosen, UpdateOptions{});
   ASSERT_TRUE(report) << report.error().what();

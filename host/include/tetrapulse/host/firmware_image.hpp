@@ -39,8 +39,11 @@ std::optional<SlotLayout> slot_layout(protocol::HwModel model);
 
 // The image of `images` this board takes next (SPEC.md §7.2). kImageRejected when none fits,
 // saying for each image why ("fw.bin: built for stm32f405 rev 2..3, board is rev 1").
+// The result points into `images`, which must outlive it (hence no temporaries).
 HostResult<const FirmwareImage*> choose_image(const std::vector<FirmwareImage>& images, const protocol::Info& board,
                                               const std::string& board_name);
+HostResult<const FirmwareImage*> choose_image(std::vector<FirmwareImage>&& images, const protocol::Info& board,
+                                              const std::string& board_name) = delete;
 
 // "stm32f405", "linux", "sim".
 const char* hw_model_name(protocol::HwModel model);
