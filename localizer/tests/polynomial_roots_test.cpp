@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <complex>
 #include <random>
 #include <vector>
@@ -106,6 +107,44 @@ TEST(PolynomialRoots, BiquadraticQuartic) {
   std::array<double, 4> roots;
   ASSERT_EQ(real_quartic_roots(1, 0, -5, 0, 4, &roots), 4);
   EXPECT_LT(worst_miss({-2, -1, 1, 2}, roots.data(), 4), 1e-14);
+}
+
+TEST(PolynomialRoots, LargestCubicRootWhenTheTwoLargestMerge) {
+  // (x - s (1 + delta))(x - s)(x + 30 s): the largest root and the middle one meet as
+  // delta goes to 0 while the third stays far away, as in Lambda Twist's cubic near the
+  // danger cylinder. The root returned must be the largest, much closer to it than to
+  // the middle one.
+  std::mt19937_64 rng(24);
+  std::uniform_real_distribution<double> u(0.5, 2.0);
+  for (int e = 1; e <= 6; ++e) {
+    const double delta = std::pow(10.0, -e);
+    for (int i = 0; i < 1000; ++i) {
+      const double scale = u(rng) * (i % 2 ? 1 : -1), size = u(rng);
+      const auto c = expand(scale, {size * (1 + delta), size, -30 * size});
+      const double largest = largest_real_cubic_root(c[0], c[1], c[2], c[3]);
+      EXPECT_LT(std::abs(largest - size * (1 + delta)), 0.01 * delta * size) << "delta " << delta;
+    }
+  }
+}
+
+TEST(PolynomialRoots, SingleCubicRootOverNinetyOrdersOfMagnitude) {
+  // One real root r and a complex pair of the same magnitude, r from 1e-45 to 1e45 (the
+  // discriminant goes with r^6): Cardano's cube root must hold its precision at every
+  // exponent.
+  std::mt19937_64 rng(25);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int e = -45; e <= 45; ++e) {
+    for (int i = 0; i < 20; ++i) {
+      const double size = std::pow(10.0, e + u(rng));
+      const double r = size * (u(rng) < 0 ? -1 : 1);
+      const std::complex<double> z{size * u(rng), size * (0.1 + std::abs(u(rng)))};
+      const auto c = expand(1.0 + u(rng) * 0.5, {r, z, std::conj(z)});
+      std::array<double, 3> roots;
+      ASSERT_EQ(real_cubic_roots(c[0], c[1], c[2], c[3], &roots), 1) << "e " << e;
+      EXPECT_LT(std::abs(roots[0] - r), 1e-12 * size) << "e " << e;
+      EXPECT_LT(std::abs(largest_real_cubic_root(c[0], c[1], c[2], c[3]) - r), 1e-12 * size) << "e " << e;
+    }
+  }
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 #pragma once
 // Real roots of cubic and quartic polynomials in closed form (Cardano; Ferrari),
-// each polished by Newton steps on the original polynomial. The P3P solvers use
-// them: Lambda Twist's cubic in gamma, Kneip's quartic in cos(theta).
+// polished by Newton steps on the original polynomial where the closed form loses
+// digits. The P3P solvers use them: Lambda Twist's cubic in gamma, Kneip's quartic in
+// cos(theta).
 #include <array>
 
 namespace tetrapulse {
@@ -11,7 +12,7 @@ namespace tetrapulse {
 int real_cubic_roots(double c3, double c2, double c1, double c0, std::array<double, 3>* roots);
 
 // The largest real root of c3 x^3 + c2 x^2 + c1 x + c0 = 0 with c3 != 0: the same
-// as the last of real_cubic_roots, for about half the work.
+// as the last of real_cubic_roots, for a fraction of the work (no acos, cos or cbrt).
 double largest_real_cubic_root(double c3, double c2, double c1, double c0);
 
 // Real roots of c4 x^4 + c3 x^3 + c2 x^2 + c1 x + c0 = 0 with c4 != 0 (Ferrari's
