@@ -29,8 +29,10 @@ ServoTuning ServoTuning::can() {
   t.window = 16;
   t.lock_threshold_ns = 20'000;
   t.lock_count = 10;
+  t.unlock_count = 10;  // 1 s at 10 Hz: a scheduling hiccup on the sender is not a lost lock
   t.gate_acquiring_ns = 2'000'000;
   t.gate_locked_ns = 300'000;
+  t.gate_ahead_locked_ns = 50'000;  // the window's earliest frame is within microseconds of the floor
   t.gate_growth_ppb = 20'000;
   t.restep_after = 5;
   t.min_baseline_ns = 1'000'000'000;
@@ -48,6 +50,7 @@ void ClockServo::restart(const ServoTuning& tuning) {
   ever_sampled_ = false;
   was_locked_ = false;
   good_in_row_ = 0;
+  far_in_row_ = 0;
   bad_in_row_ = 0;
   window_count_ = 0;
   window_next_ = 0;
@@ -90,8 +93,9 @@ int64_t ClockServo::filtered_error(Tick local, int64_t rig_ns) const {
   return best;
 }
 
-int64_t ClockServo::gate(Tick local) const {
-  const int64_t base = phase_ == Phase::kLocked ? tuning_.gate_locked_ns : tuning_.gate_acquiring_ns;
+int64_t ClockServo::gate(Tick local, int64_t error) const {
+  const int64_t locked = error > 0 ? tuning_.gate_ahead_locked_ns : tuning_.gate_locked_ns;
+  const int64_t base = phase_ == Phase::kLocked ? locked : tuning_.gate_acquiring_ns;
   if (!have_accepted_ || local <= last_accepted_.local) return base;
   const int64_t since_ns = mapping_.to_rig(local) - mapping_.to_rig(last_accepted_.local);
   return base + mul_shr_signed(since_ns, tuning_.gate_growth_ppb, 0) / 1'000'000'000;
@@ -121,7 +125,7 @@ SampleVerdict ClockServo::add_sample(Tick local, int64_t rig_ns) {
 
   const int64_t error = rig_ns - mapping_.to_rig(local);
   const int64_t tau = rig_ns - last_accepted_.rig;
-  if (abs64(error) > gate(local) || tau <= 0) {
+  if (abs64(error) > gate(local, error) || tau <= 0) {
     ++rejected_;
     if (++bad_in_row_ >= tuning_.restep_after) {
       // Persistent disagreement: the time base moved (or our step was wrong). Start over
@@ -173,10 +177,15 @@ SampleVerdict ClockServo::add_sample(Tick local, int64_t rig_ns) {
   } else {
     good_in_row_ = 0;
   }
+  if (abs64(e) > 4 * tuning_.lock_threshold_ns) {
+    if (far_in_row_ < 255) ++far_in_row_;
+  } else {
+    far_in_row_ = 0;
+  }
   if (phase_ == Phase::kTracking && good_in_row_ >= tuning_.lock_count) {
     phase_ = Phase::kLocked;
     was_locked_ = true;
-  } else if (phase_ == Phase::kLocked && abs64(e) > 4 * tuning_.lock_threshold_ns) {
+  } else if (phase_ == Phase::kLocked && far_in_row_ >= tuning_.unlock_count) {
     phase_ = Phase::kTracking;
   }
   return SampleVerdict::kAccepted;

@@ -138,6 +138,71 @@ TEST_P(CanLock, LocksWithin5sAt100ppmWith50usJitter) {
 
 INSTANTIATE_TEST_SUITE_P(ClockServo, CanLock, ::testing::Values(-100.0, -20.0, 0.0, 45.0, 100.0));
 
+// A sender that stalls (a loaded host stamping its Syncs late, as under emulation): three
+// FollowUps in a row 120 us later than the true send time, well inside the locked gate but
+// beyond 4 lock thresholds. Reception latency only ever delays a frame, so a sample this far
+// ahead of a locked clock is refused: the state stays locked throughout and the LED edges
+// stay where they were.
+TEST(ClockServo, CanStaysLockedThroughAStalledSender) {
+  TestBoard b(board_at(40, 9'000'000));
+  const int64_t start = 1 * kSecond;
+  b.board.advance_to(start - 100 * kMs);
+  b.configure(can_config());
+  const int64_t glitch = start + 20 * kSecond, end = start + 30 * kSecond;
+  const CanRun run = run_can(b, start, glitch, 100 * kMs, 50'000, 11);
+  ASSERT_GE(run.locked_at, 0) << "never locked";
+  const uint32_t rejected_before = b.board.status().sync_rejected;
+  std::mt19937 rng(12);
+  std::uniform_int_distribution<int64_t> jitter(0, 50'000);
+  int unlocked_reports = 0;
+  uint16_t seq = 5000;
+  for (int64_t t = glitch; t < end; t += 100 * kMs, ++seq) {
+    const int64_t late = t < glitch + 300 * kMs ? 120'000 : 0;
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{seq}}, t + jitter(rng));
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{seq, t + late}}, t + kMs);
+    if (b.sync_state() != SyncState::kLocked) ++unlocked_reports;
+  }
+  b.board.advance_to(end);
+  const EdgeTiming after = edge_timing(b.board, protocol::TimeBase{0, kMs}, glitch, end);
+  const uint32_t rejected = b.board.status().sync_rejected - rejected_before;
+  std::printf("[measure] can sender stalled 3 x 120 us: %d of 100 samples not locked, %u refused, LED max |err| %.1f us\n",
+              unlocked_reports, rejected, after.max_abs_ns / 1e3);
+  EXPECT_EQ(unlocked_reports, 0);
+  EXPECT_EQ(rejected, 3u);
+  EXPECT_LT(after.max_abs_ns, 20'000.0);
+}
+
+// The lock state's hysteresis on the servo alone, with the loop gains at zero so that an
+// offset stays exactly what it is fed: a 1 GHz counter (a tick is a nanosecond), samples
+// every 10 ms, locked below 100 ns, unlocked after 3 samples in a row above 400 ns.
+TEST(ClockServo, LeavesLockOnlyAfterUnlockCountSamplesFarOff) {
+  ServoTuning tuning;
+  tuning.kp_256 = 0;
+  tuning.ki_256 = 0;
+  tuning.lock_threshold_ns = 100;
+  tuning.lock_count = 4;
+  tuning.unlock_count = 3;
+  tuning.gate_locked_ns = 10'000;
+  ClockServo servo(1'000'000'000);
+  servo.restart(tuning);
+  int64_t t = 0;
+  const auto feed = [&](int64_t offset_ns) {
+    t += 10 * kMs;
+    servo.add_sample(static_cast<Tick>(t), t + offset_ns);
+    return servo.state(static_cast<Tick>(t));
+  };
+  for (int i = 0; i < 6; ++i) feed(0);
+  ASSERT_EQ(servo.state(static_cast<Tick>(t)), SyncState::kLocked);
+  EXPECT_EQ(feed(500), SyncState::kLocked);
+  EXPECT_EQ(feed(500), SyncState::kLocked) << "two samples far off are a burst, not a lost lock";
+  EXPECT_EQ(feed(0), SyncState::kLocked);
+  EXPECT_EQ(feed(500), SyncState::kLocked);
+  EXPECT_EQ(feed(-500), SyncState::kLocked);
+  EXPECT_EQ(feed(500), SyncState::kAcquiring) << "three in a row, either sign: unlocked";
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(feed(0), SyncState::kAcquiring);
+  EXPECT_EQ(feed(0), SyncState::kLocked) << "lock_count good samples lock again";
+}
+
 }  // namespace
 }  // namespace tetrapulse::fw::testing
 

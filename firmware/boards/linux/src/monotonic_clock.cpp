@@ -3,13 +3,36 @@
 #include <time.h>
 
 #include <cmath>
+#include <cstdint>
 
 namespace tetrapulse::linux_board {
 
-int64_t monotonic_ns() {
+namespace {
+
+int64_t read_clock(clockid_t id) {
   timespec t{};
-  clock_gettime(CLOCK_MONOTONIC, &t);
+  clock_gettime(id, &t);
   return static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+}
+
+}  // namespace
+
+int64_t monotonic_ns() { return read_clock(CLOCK_MONOTONIC); }
+
+int64_t monotonic_from_realtime_ns(int64_t realtime_ns) {
+  // REALTIME - MONOTONIC from the tightest of a few brackets: a preemption inside one (a
+  // loaded or emulated machine) would skew it by half its length.
+  int64_t best_span = INT64_MAX, difference = 0;
+  for (int i = 0; i < 3; ++i) {
+    const int64_t before = read_clock(CLOCK_MONOTONIC);
+    const int64_t real = read_clock(CLOCK_REALTIME);
+    const int64_t after = read_clock(CLOCK_MONOTONIC);
+    if (after - before < best_span) {
+      best_span = after - before;
+      difference = real - (before + (after - before) / 2);
+    }
+  }
+  return realtime_ns - difference;
 }
 
 MonotonicClock::MonotonicClock(double ppm)

@@ -16,15 +16,6 @@
 #include "tetrapulse/fw/board_state.hpp"
 
 namespace tetrapulse::linux_board {
-namespace {
-
-int64_t realtime_ns() {
-  timespec t{};
-  clock_gettime(CLOCK_REALTIME, &t);
-  return static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-}
-
-}  // namespace
 
 std::unique_ptr<SocketCanBus> SocketCanBus::open(const std::string& interface_name, const MonotonicClock& clock,
                                                  std::string* error) {
@@ -109,18 +100,12 @@ std::optional<ReceivedCanFrame> SocketCanBus::receive() {
       continue;
     }
     if ((f.can_id & CAN_EFF_FLAG) == 0 || (f.can_id & CAN_RTR_FLAG) != 0 || f.can_dlc > CAN_MAX_DLEN) continue;
-    // The kernel's stamp is on CLOCK_REALTIME; taken microseconds ago, so the current
-    // REALTIME - MONOTONIC difference maps it (an NTP step in between is not worth a guard).
     int64_t monotonic = linux_board::monotonic_ns();
     for (cmsghdr* c = CMSG_FIRSTHDR(&m); c != nullptr; c = CMSG_NXTHDR(&m, c)) {
       if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
         timespec t{};
         std::memcpy(&t, CMSG_DATA(c), sizeof(t));
-        const int64_t stamp = static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-        const int64_t before = linux_board::monotonic_ns();
-        const int64_t real = realtime_ns();
-        const int64_t after = linux_board::monotonic_ns();
-        monotonic = stamp - (real - (before + (after - before) / 2));
+        monotonic = monotonic_from_realtime_ns(static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec);
       }
     }
     ReceivedCanFrame r;

@@ -13,9 +13,13 @@
 //
 // Acquisition: the first sample steps rig(L) to R; the second (at least min_baseline
 // later) steps again and sets the rate from the two; then the PI loop runs. Locked once
-// lock_count consecutive filtered errors are below lock_threshold_ns. A sample whose error
+// lock_count consecutive filtered errors are below lock_threshold_ns; unlocked again only
+// after unlock_count consecutive ones above 4 lock_threshold_ns, so a short burst of
+// late or early samples that the loop absorbs does not flap the state. A sample whose error
 // exceeds the gate is an outlier and is refused (a missed or doubled edge, a stale
-// FollowUp); restep_after consecutive outliers mean the time base really moved and start
+// FollowUp; once locked, a sample ahead of the clock by more than gate_ahead_locked_ns,
+// which one-sided reception latency cannot produce but a sender stamping late can);
+// restep_after consecutive outliers mean the time base really moved and start
 // acquisition again. No accepted sample for holdover_after: holdover, on the last rate.
 //
 // Noisy samples (CAN reception latency, one-sided: a frame is never received early)
@@ -35,8 +39,10 @@ struct ServoTuning {
   uint8_t window = 1;                   // minimum-latency filter length (1 = off), <= kMaxWindow
   int64_t lock_threshold_ns = 300;      // |filtered error| below this ...
   uint8_t lock_count = 8;               // ... for this many consecutive samples: locked
+  uint8_t unlock_count = 3;             // consecutive samples above 4 lock_threshold_ns: unlocked
   int64_t gate_acquiring_ns = 50'000;   // outlier gate before lock
   int64_t gate_locked_ns = 1'000;       // outlier gate once locked
+  int64_t gate_ahead_locked_ns = 1'000; // ... for a sample ahead of the clock (error > 0)
   uint32_t gate_growth_ppb = 10'000;    // the gate widens by this rate while no sample is accepted
   uint8_t restep_after = 5;             // consecutive outliers that restart acquisition
   int64_t min_baseline_ns = 5'000'000;  // second acquisition sample at least this long after the first
@@ -91,7 +97,7 @@ class ClockServo {
 
   void step_to(Tick local, int64_t rig_ns);
   int64_t filtered_error(Tick local, int64_t rig_ns) const;
-  int64_t gate(Tick local) const;
+  int64_t gate(Tick local, int64_t error) const;
   void remember(Tick local, int64_t rig_ns);
 
   ServoTuning tuning_;
@@ -106,6 +112,7 @@ class ClockServo {
   int64_t integral_ = 0;     // 2^-40 units
   int64_t last_error_ = 0;   // ns
   uint8_t good_in_row_ = 0;
+  uint8_t far_in_row_ = 0;  // accepted samples above the unlock threshold, while locked
   uint8_t bad_in_row_ = 0;
   Sample window_[kMaxWindow];
   uint8_t window_count_ = 0;
