@@ -9,6 +9,8 @@
 //   BM_LocalizerAcquisition: a fresh localizer over its first 12 frames (whole
 //                           image searches, identification of all four targets).
 //   BM_LocalizerTracking:   the four targets tracked (ROIs only), per frame.
+//   BM_Localizer*Sequence:  the same two, over frames 30-239 once (for
+//                           instruction counts: the same frames every run).
 //   BM_AprilTag36h11/D:     apriltag_detector_detect with quad_decimate D on a
 //                           frame showing one tag36h11 whose black square is
 //                           0.30 m, the span of the paper's large target, 1.5 m
@@ -99,20 +101,57 @@ void time_frames(benchmark::State& state, const TargetsFile& targets, const Loca
   state.counters["whole_image_share"] = double(searched) / double(state.iterations());
 }
 
-void BM_LocalizerFullFrame(benchmark::State& state) {
+// Full frame: the scene's targets and one that never shows, searched for every frame.
+TargetsFile with_absent_target() {
   TargetsFile targets = sequence().scenario.targets;
   Target absent = targets.targets[0];
   absent.id = 99;
   for (Marker& m : absent.markers) m.code = Code::parse("000111010110", nullptr);
   targets.targets.push_back(absent);
+  return targets;
+}
+
+LocalizerOptions searching_every_frame() {
   LocalizerOptions options;
   options.full_search_interval = 1;
-  time_frames(state, targets, options, 30);
+  return options;
+}
+
+void BM_LocalizerFullFrame(benchmark::State& state) {
+  time_frames(state, with_absent_target(), searching_every_frame(), 30);
 }
 BENCHMARK(BM_LocalizerFullFrame)->Unit(benchmark::kMicrosecond);
 
 void BM_LocalizerTracking(benchmark::State& state) { time_frames(state, sequence().scenario.targets, {}, 30); }
 BENCHMARK(BM_LocalizerTracking)->Unit(benchmark::kMicrosecond);
+
+// Frames 30 to 239 once, after 30 untimed ones: the same frames every run, for
+// instruction counts (callgrind --toggle-collect='*sequence_frames*' counts
+// these calls only). Not inlined, so that callgrind can name it.
+[[gnu::noinline]] void sequence_frames(Localizer* localizer) { feed(localizer, 30, kFrames); }
+
+void whole_sequence(benchmark::State& state, const TargetsFile& targets, const LocalizerOptions& options) {
+  cv::setNumThreads(1);
+  const Sequence& s = sequence();
+  for (auto _ : state) {
+    state.PauseTiming();
+    Localizer localizer(s.scenario.camera, targets, options);
+    feed(&localizer, 0, 30);
+    state.ResumeTiming();
+    sequence_frames(&localizer);
+  }
+  state.counters["per_frame_us"] = benchmark::Counter(double(kFrames - 30) * 1e-6,
+                                                      benchmark::Counter::kIsIterationInvariantRate |
+                                                          benchmark::Counter::kInvert);
+}
+
+void BM_LocalizerFullFrameSequence(benchmark::State& state) {
+  whole_sequence(state, with_absent_target(), searching_every_frame());
+}
+BENCHMARK(BM_LocalizerFullFrameSequence)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+void BM_LocalizerTrackingSequence(benchmark::State& state) { whole_sequence(state, sequence().scenario.targets, {}); }
+BENCHMARK(BM_LocalizerTrackingSequence)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 void BM_LocalizerAcquisition(benchmark::State& state) {
   cv::setNumThreads(1);

@@ -1,7 +1,9 @@
 #include "background_histogram.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 
 namespace tetrapulse::blob_internal {
 namespace {
@@ -25,16 +27,13 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
     shift_ = 0;
     quantum_ = 1;
     used_ = 256;
-    bins_.assign(256, 0);
-    if (window.area() < 16384) {  // small windows: one histogram to clear
-      for (int y = window.y; y < window.y + window.height; ++y) {
-        const uint8_t* p = image.ptr<uint8_t>(y) + window.x;
-        for (int x = 0; x < window.width; ++x) ++bins_[p[x]];
-      }
-      return;
-    }
-    partial_.assign(4 * 256, 0);
+    bins_.resize(256);
+    // Background pixels fill a few bins: counted into one histogram, each count
+    // waits for the previous one to the same bin. Four interleaved histograms
+    // pay for their clearing already in a 27 x 27 ROI window.
+    partial_.resize(4 * 256);
     uint32_t* h = partial_.data();
+    std::memset(h, 0, partial_.size() * sizeof(uint32_t));
     for (int y = window.y; y < window.y + window.height; ++y) {
       const uint8_t* p = image.ptr<uint8_t>(y) + window.x;
       int x = 0;
@@ -139,12 +138,21 @@ double BackgroundHistogram::otsu() const {
   int lo = 0, hi = std::min(used_, static_cast<int>(bins_.size())) - 1;
   while (lo < hi && bins_[lo] == 0) ++lo;
   while (hi > lo && bins_[hi] == 0) --hi;
+  // An empty bin leaves the split as it was: only the others are visited. They
+  // are listed first without a branch each (marker pixels leave empty bins
+  // between full ones at random, and each such branch would be a coin toss).
+  std::array<uint16_t, kMaxBins> full;
+  int count = 0;
+  for (int b = lo; b <= hi; ++b) {
+    full[size_t(count)] = uint16_t(b);
+    count += bins_[b] != 0;
+  }
   double sum_all = 0;
-  for (int b = lo; b <= hi; ++b) sum_all += double(bins_[b]) * b;
+  for (int k = 0; k < count; ++k) sum_all += double(bins_[full[size_t(k)]]) * full[size_t(k)];
   double w0 = 0, sum0 = 0, best = -1;
   int best_t = -1;
-  for (int t = lo; t < hi; ++t) {
-    if (bins_[t] == 0) continue;  // an empty bin leaves the split as it was
+  for (int k = 0; k < count && full[size_t(k)] < hi; ++k) {
+    const int t = full[size_t(k)];
     w0 += bins_[t];
     sum0 += double(bins_[t]) * t;
     const double w1 = double(total_) - w0;

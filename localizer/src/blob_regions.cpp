@@ -17,6 +17,28 @@ int above(double level) {
   return static_cast<int>(std::floor(level)) + 1;
 }
 
+// Whether some byte of `word` is >= level (1..255), all 8 at once: a byte b
+// below 128 gains bit 7 from b + (128 - level) exactly when b >= level (no carry
+// leaves it); above level 128, only bytes with bit 7 set can qualify, and their
+// low 7 bits are compared the same way. A carry out of a byte >= 128 may mark
+// the next byte wrongly, but only when some byte already qualifies.
+bool any_byte_at_least(uint64_t word, int level) {
+  constexpr uint64_t kOnes = 0x0101010101010101ull, kHigh = 0x8080808080808080ull;
+  if (level <= 128) return (((word + kOnes * uint64_t(128 - level)) | word) & kHigh) != 0;
+  return (((word & ~kHigh) + kOnes * uint64_t(256 - level)) & word & kHigh) != 0;
+}
+
+// The first x in [x, end) from which a value >= level (1..255) may follow in an
+// 8-bit row, skipping 8 pixels at a time while none of them reaches it (most of
+// an ROI window is background).
+int skip_below(const uint8_t* row, int x, int end, int level) {
+  for (uint64_t word; x + 8 <= end; x += 8) {
+    std::memcpy(&word, row + x, sizeof word);
+    if (any_byte_at_least(word, level)) break;
+  }
+  return x;
+}
+
 double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
@@ -151,20 +173,32 @@ void RegionGrower::grow_typed(const cv::Mat& work, cv::Rect window, int seed_min
   const int y0 = window.y, y1 = window.y + window.height;
   for (int y = y0; y < y1; ++y) {
     const T* row = work.ptr<T>(y);
-    const uint8_t* seeds = masked ? seed_mask_.ptr<uint8_t>(y) : nullptr;
     const int32_t* labels = labels_.data() + size_t(y) * width;
-    for (int x = x0; x < x1; ++x) {
-      if (masked) {
-        // Skip 8 seedless pixels at a time.
-        while (x + 8 <= x1) {
-          uint64_t word;
-          std::memcpy(&word, seeds + x, sizeof word);
-          if (word != 0) break;
-          x += 8;
+    if (!masked) {
+      for (int x = x0; x < x1;) {
+        int end = x1;
+        if constexpr (sizeof(T) == 1) {
+          if (seed_min >= 1) {
+            x = skip_below(row, x, x1, seed_min);  // background, 8 pixels at a time
+            end = std::min(x + 8, x1);             // then the 8 that may hold a seed, one by one
+          }
         }
-        if (x >= x1) break;
-        if (!seeds[x]) continue;
+        for (; x < end; ++x)
+          if (row[x] >= seed_min && labels[x] == 0) grow_from<T>(work, window, y * width + x, keep_min, regions);
       }
+      continue;
+    }
+    const uint8_t* seeds = seed_mask_.ptr<uint8_t>(y);
+    for (int x = x0; x < x1; ++x) {
+      // Skip 8 seedless pixels at a time.
+      while (x + 8 <= x1) {
+        uint64_t word;
+        std::memcpy(&word, seeds + x, sizeof word);
+        if (word != 0) break;
+        x += 8;
+      }
+      if (x >= x1) break;
+      if (!seeds[x]) continue;
       if (row[x] < seed_min || labels[x] != 0) continue;
       grow_from<T>(work, window, y * width + x, keep_min, regions);
     }
@@ -184,24 +218,48 @@ void RegionGrower::grow_from(const cv::Mat& work, cv::Rect window, int seed, int
   int min_x = sx, max_x = sx, min_y = sy, max_y = sy;
   labels_[size_t(seed)] = region.label;
   pixels_.push_back(seed);
-  queue_.clear();
-  queue_.push_back({sx, sy});
-  // Breadth-first; the queue keeps coordinates so that no pixel needs a division.
-  for (size_t head = 0; head < queue_.size(); ++head) {
+  // The queue is indexed, and grows (rarely: to the largest region yet) only when full.
+  if (queue_.empty()) queue_.resize(256);
+  size_t tail = 0;
+  queue_[tail++] = {sx, sy};
+  const auto take = [&](int nx, int ny, int32_t* label) {
+    *label = region.label;
+    pixels_.push_back(ny * width + nx);
+    if (tail == queue_.size()) queue_.resize(2 * tail);
+    queue_[tail++] = {nx, ny};
+    min_x = std::min(min_x, nx);
+    max_x = std::max(max_x, nx);
+    min_y = std::min(min_y, ny);
+    max_y = std::max(max_y, ny);
+  };
+  // The 8 neighbours row by row, as offsets in the labels and in the image.
+  static constexpr int kDx[8] = {-1, 0, 1, -1, 1, -1, 0, 1}, kDy[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
+  const std::ptrdiff_t step = std::ptrdiff_t(work.step1());
+  std::ptrdiff_t label_offset[8], value_offset[8];
+  for (int k = 0; k < 8; ++k) {
+    label_offset[k] = kDy[k] * std::ptrdiff_t(width) + kDx[k];
+    value_offset[k] = kDy[k] * step + kDx[k];
+  }
+  // Breadth-first, neighbours row by row (recovery's rim follows this order);
+  // the queue keeps coordinates so that no pixel needs a division.
+  for (size_t head = 0; head < tail; ++head) {
     const auto [px, py] = queue_[head];
+    if (px > x0 && px < x1 - 1 && py > y0 && py < y1 - 1) {
+      // Inside the window (nearly every pixel): no bounds to clamp, and the loop
+      // unrolled (no counter or table lookup per neighbour).
+      const T* value = work.ptr<T>(py) + px;
+      int32_t* label = labels_.data() + size_t(py) * width + px;
+#pragma GCC unroll 8
+      for (int k = 0; k < 8; ++k)
+        if (label[label_offset[k]] == 0 && value[value_offset[k]] >= keep_min)
+          take(px + kDx[k], py + kDy[k], label + label_offset[k]);
+      continue;
+    }
     for (int ny = std::max(py - 1, y0); ny <= std::min(py + 1, y1 - 1); ++ny) {
       const T* nrow = work.ptr<T>(ny);
       int32_t* nlabels = labels_.data() + size_t(ny) * width;
-      for (int nx = std::max(px - 1, x0); nx <= std::min(px + 1, x1 - 1); ++nx) {
-        if (nlabels[nx] != 0 || nrow[nx] < keep_min) continue;
-        nlabels[nx] = region.label;
-        pixels_.push_back(ny * width + nx);
-        queue_.push_back({nx, ny});
-        min_x = std::min(min_x, nx);
-        max_x = std::max(max_x, nx);
-        min_y = std::min(min_y, ny);
-        max_y = std::max(max_y, ny);
-      }
+      for (int nx = std::max(px - 1, x0); nx <= std::min(px + 1, x1 - 1); ++nx)
+        if (nlabels[nx] == 0 && nrow[nx] >= keep_min) take(nx, ny, nlabels + nx);
     }
   }
   region.box = cv::Rect(min_x, min_y, max_x - min_x + 1, max_y - min_y + 1);
@@ -242,30 +300,30 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
   // ring of unlabelled pixels touching it (they hold the spot's faint tail).
   const int wx0 = window.x, wx1 = window.x + window.width - 1, wy0 = window.y, wy1 = window.y + window.height - 1;
   const int x0 = std::max(min_x - 1, wx0), x1 = std::min(max_x + 1, wx1);
+  // Moments of pixel centres are sums of integers: exact in int64, summed per row.
+  int64_t sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
   for (int y = std::max(min_y - 1, wy0); y <= std::min(max_y + 1, wy1); ++y) {
     const T* row = work.ptr<T>(y);
     const int32_t* here = labels_.data() + size_t(y) * width;
     const int32_t* up = y > wy0 ? here - width : nullptr;
     const int32_t* down = y < wy1 ? here + width : nullptr;
+    int64_t row_n = 0, row_sx = 0, row_sxx = 0;
+    int row_min = std::numeric_limits<int>::max(), row_max = -1;
     for (int x = x0; x <= x1; ++x) {
       const int32_t l = here[x];
       const double v = row[x];
       const double d = v - bg;
       if (l == label) {
-        ++s.area;
-        s.sx += x;
-        s.sy += y;
-        s.sxx += double(x) * x;
-        s.sxy += double(x) * y;
-        s.syy += double(y) * y;
+        ++row_n;
+        row_sx += x;
+        row_sxx += int64_t(x) * x;
         s.w += d;
         s.wx += d * x;
         s.wy += d * y;
         s.peak = std::max(s.peak, d);
         s.saturated = s.saturated || v >= levels.saturation;
-        const size_t r = size_t(y - min_y);
-        row_min_[r] = std::min(row_min_[r], x);
-        row_max_[r] = std::max(row_max_[r], x);
+        row_min = std::min(row_min, x);
+        row_max = x;
         continue;
       }
       if (l != 0 || d <= 0) continue;
@@ -278,7 +336,23 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
       s.wx += d * x;
       s.wy += d * y;
     }
+    if (row_n == 0) continue;
+    s.area += int(row_n);
+    sx += row_sx;
+    sxx += row_sxx;
+    sy += row_n * y;
+    sxy += row_sx * y;
+    syy += row_n * y * y;
+    if (y >= min_y && y <= max_y) {
+      row_min_[size_t(y - min_y)] = row_min;
+      row_max_[size_t(y - min_y)] = row_max;
+    }
   }
+  s.sx = double(sx);
+  s.sy = double(sy);
+  s.sxx = double(sxx);
+  s.sxy = double(sxy);
+  s.syy = double(syy);
 
   // The hull of the pixel squares needs, at each horizontal pixel edge, only
   // the leftmost and rightmost corner there. Stored as (y, x): sorted already,

@@ -92,7 +92,7 @@ class RegionGrower {
   cv::Size size_;
   std::vector<int32_t> labels_;
   std::vector<int32_t> pixels_;
-  std::vector<std::pair<int, int>> queue_;  // (x, y) of pixels still to grow from
+  std::vector<std::pair<int, int>> queue_;  // (x, y) of a growing region's pixels, in the order reached
   cv::Mat seed_mask_;  // pixels at or above the seed level (large windows)
   int32_t next_label_ = 1;
   std::vector<int> row_min_, row_max_;

@@ -140,7 +140,7 @@ struct Localizer::State {
   std::vector<BlobRoi> rois;
   std::vector<TrackGate> gates;
   std::vector<TargetTrack> target_tracks;
-  std::unordered_map<int64_t, TrackBits> bits;
+  std::unordered_map<int64_t, TrackBitReader> bits;
   std::vector<RigCode> rig;                      // the rig's distinct codes (frequency_identifier.hpp)
   std::vector<std::array<int, 4>> frequency_of;  // each marker's frequency code in `rig` (-1: binary or none)
   bool frequency_coded = false;                  // some marker plays a frequency code
@@ -356,15 +356,13 @@ void Localizer::State::read_bits() {
   // Forget the bits of tracks that ended.
   for (auto it = bits.begin(); it != bits.end();) it = tracker.find(it->first) ? std::next(it) : bits.erase(it);
   if (!coded) return;
-  // Bits are kept per history index, and a full history shifts by one sample a
-  // frame: every sample a reader uses is read again. Identification reads the
-  // newest max_samples of unclaimed tracks; code checks the newest verify_samples
-  // of claimed ones (all max_samples for a free-running clock's re-estimation).
+  // Identification reads the newest max_samples of unclaimed tracks; code checks
+  // the newest verify_samples of claimed ones (all max_samples for a free-running
+  // clock's re-estimation). Every track keeps them all current, which costs no
+  // more: a reader re-reads only the newest samples, whose bits can still change.
   const int needed = std::max(options.identification.max_samples, options.verify_samples);
-  for (const BlobTrack& track : tracker.tracks()) {
-    const int samples = free_running || !owner(track.id()) ? needed : options.verify_samples;
-    read_track_bits(track.history(), targets.modulation, options.bits, bits_from(track, samples), &bits[track.id()]);
-  }
+  for (const BlobTrack& track : tracker.tracks())
+    bits[track.id()].update(track.history(), targets.modulation, options.bits, bits_from(track, needed));
 }
 
 void Localizer::State::read_frequencies() {
@@ -405,7 +403,7 @@ void Localizer::State::re_estimate_clock(size_t t, int64_t mid) {
       const BlobTrack* track = tracker.find(tt.track_of[size_t(m)]);
       if (!track || !target.markers[size_t(m)].code || frequency_of[t][size_t(m)] >= 0) continue;
       cost[size_t(k + kSteps)] +=
-          match_code(track->history(), bits[track->id()], bits_from(*track, needed), clock,
+          match_code(track->history(), bits[track->id()].bits(), bits_from(*track, needed), clock,
                      *target.markers[size_t(m)].code)
               .cost();
     }
@@ -452,8 +450,8 @@ void Localizer::State::verify_codes(int64_t mid) {
         continue;
       }
       const CodeClock clock{tt.clock.origin_ns, tt.clock.bit_period_ns, 1.0};
-      const CodeMatch check = match_code(track->history(), bits[track->id()], bits_from(*track, options.verify_samples),
-                                         clock, *marker.code);
+      const CodeMatch check = match_code(track->history(), bits[track->id()].bits(),
+                                         bits_from(*track, options.verify_samples), clock, *marker.code);
       if (check.mismatches > options.verify_max_errors) tt.track_of[size_t(m)] = -1;
     }
   }
@@ -475,7 +473,7 @@ void Localizer::State::identify(int64_t mid) {
     CandidateTrack c;
     c.track = &track;
     const auto it = bits.find(track.id());
-    c.bits = it != bits.end() ? &it->second : &kNoBits;
+    c.bits = it != bits.end() ? &it->second.bits() : &kNoBits;
     const TrackSample& newest = track.history().newest();
     c.pixel = newest.frame == stamp.frame && newest.detected ? newest.centroid : track.predict(mid);
     c.radius_px = track.last_blob().radius;

@@ -143,14 +143,18 @@ bool levenberg_marquardt(const ReprojectionProblem& problem, size_t markers, int
     const Vector6 delta = -llt.solve(g);
     if (llt.info() != Eigen::Success || !delta.allFinite()) return false;
     const Pose candidate = step(out->pose, delta);
+    // H and g at the candidate come with its cost: most steps are taken, and a
+    // taken step needs them next.
     double new_cost, new_squared;
-    if (problem.evaluate(candidate, &new_cost, &new_squared) < 0 && new_cost < cost) {
+    Matrix6 new_H;
+    Vector6 new_g;
+    if (problem.evaluate(candidate, &new_cost, &new_squared, &new_H, &new_g) < 0 && new_cost < cost) {
       // A step that changes the cost only in its tenth digit also ends the search:
       // near a singular H (three markers near the danger cylinder) or at a Huber
       // kink the Gauss-Newton prediction above is unreliable and steps only crawl.
       const bool stalled = cost - new_cost <= 1e-10 * cost;
       out->pose = candidate;
-      problem.evaluate(out->pose, &cost, &squared, &H, &g);
+      cost = new_cost, squared = new_squared, H = new_H, g = new_g;
       lambda = std::max(lambda / 3, 1e-12);
       converged = stalled || at_minimum();
     } else {

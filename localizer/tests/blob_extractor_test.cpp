@@ -458,6 +458,27 @@ TEST(BlobExtractor, RoiModeReportsBlobsNoRoiTook) {
   EXPECT_LT((out.blobs[0].centroid - Eigen::Vector2d(47.1, 40.6)).norm(), 0.05);
 }
 
+TEST(BlobExtractor, RoiModeFindsSeedsJustAtTheThresholdAnywhereInTheWindow) {
+  // A noiseless background B and a 3 x 3 plateau at B + 9: sigma is floored at
+  // 1, Otsu splits at B + 0.5, so F1 = B + 8 and the plateau's pixels are the
+  // lowest value that seeds. The seed search skips background 8 pixels at a
+  // time: at every column offset within such a step and up to the window's
+  // last columns, and with seeds below and above 128, the plateau is found by
+  // the thresholds, not by the dim-marker recovery.
+  for (const int background : {20, 150})
+    for (int offset = -11; offset <= 11; ++offset) {
+      cv::Mat1b img(60, 80, uint8_t(background));
+      img(cv::Rect(40 + offset - 1, 29, 3, 3)).setTo(background + 9);
+      BlobExtractor extractor;
+      BlobExtraction out;
+      ASSERT_TRUE(extractor.extract(img, std::vector<BlobRoi>{roi({40, 30}, 1, 12, 2)}, &out));
+      ASSERT_TRUE(out.rois[0].detected()) << "background " << background << ", offset " << offset;
+      EXPECT_EQ(out.windows[0].f1, background + 8.0);
+      EXPECT_EQ(out.rois[0].blob.origin, BlobOrigin::kThreshold) << "background " << background << ", offset " << offset;
+      EXPECT_LT((out.rois[0].position - Eigen::Vector2d(40 + offset, 30)).norm(), 1e-9);
+    }
+}
+
 TEST(BlobExtractor, RoiModeWorksOnDarkAnd16BitImages) {
   auto img = canvas(100, 80, 40000);
   const Eigen::Vector2d c(30.4, 50.7);

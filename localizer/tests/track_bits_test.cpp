@@ -104,5 +104,76 @@ TEST(TrackBits, NoiseRarelyFlipsABit) {
   EXPECT_LT(unknown, 60);  // of 6000
 }
 
+// A track's samples as the tracker leaves them: a marker playing random bits,
+// noisy enough for doubtful readings, sometimes missed (measured from the
+// aperture or not at all).
+TrackSample random_sample(int64_t frame, const Modulation& m, double brightness, std::mt19937_64* rng,
+                          double ones = 0.5) {
+  std::uniform_real_distribution<double> u(0, 1);
+  TrackSample s;
+  s.frame = frame;
+  const bool one = u(*rng) < ones;
+  const double level = one ? 1.0 : m.kind == ModulationKind::kOnOff ? 0.0 : m.low;
+  s.measured = u(*rng) > 0.1;
+  s.detected = s.measured && (one || m.kind != ModulationKind::kOnOff) && u(*rng) > 0.1;
+  s.intensity = s.measured ? brightness * (1 + 0.3 * u(*rng)) * std::max(0.0, level + 0.3 * (u(*rng) - 0.5)) : 0.0;
+  return s;
+}
+
+TEST(TrackBitReader, KeepsWhatAFullReadReadsFrameAfterFrame) {
+  // 300 frames (the history drops its oldest sample from frame 64 on), a reader
+  // that asks for more or fewer samples now and then, windows from 1 to wider
+  // than half the history, three modulations, codes with as many 1s as 0s and
+  // with few 1s (levels then come from far in the window): every frame, the
+  // kept bits equal a fresh full read. Some of the cases this guards against
+  // show once in a hundred tracks, hence so many.
+  const Modulation modulations[] = {{ModulationKind::kTwoLevel, 0.3}, {ModulationKind::kOnOff, 0.0},
+                                    {ModulationKind::kConstant, 0.0}};
+  int64_t compared = 0;
+  for (const Modulation& m : modulations)
+    for (const int window : {1, 2, 3, 4, 6, 8, 40})
+      for (uint64_t seed = 0; seed < 100; ++seed) {
+        std::mt19937_64 rng(seed * 31 + uint64_t(window));
+        const double ones = seed % 2 == 0 ? 0.5 : 0.15;
+        const BitReading reading{window, 0.15};
+        RingBuffer<TrackSample, kTrackHistory> history;
+        TrackBitReader reader;
+        int samples = 48;
+        for (int64_t frame = 0; frame < 300; ++frame) {
+          history.push(random_sample(frame, m, 3000.0 * (1.0 + 0.5 * std::sin(0.05 * double(frame))), &rng, ones));
+          if (rng() % 3 == 0) samples = int(rng() % (kTrackHistory + 1));  // e.g. a track claimed or let go
+          const size_t n = history.size();
+          const size_t from = n > size_t(samples) ? n - size_t(samples) : 0;
+          reader.update(history, m, reading, from);
+          TrackBits fresh;
+          read_track_bits(history, m, reading, from, &fresh);
+          for (size_t j = from; j < n; ++j) {
+            ASSERT_EQ(reader.bits()[j], fresh[j]) << "window " << window << ", seed " << seed << ", frame " << frame
+                                                  << ", sample " << j << " of " << n;
+            ++compared;
+          }
+        }
+      }
+  EXPECT_GT(compared, 10000000);
+}
+
+TEST(TrackBitReader, FollowsUpdatesThatSkipSamples) {
+  // Frame numbers with gaps, and updates after 1 to 80 new samples: after more
+  // than a whole history the reader starts over; every time it reads as a full read.
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  std::mt19937_64 rng(7);
+  RingBuffer<TrackSample, kTrackHistory> h;
+  TrackBitReader reader;
+  int64_t frame = 0;
+  for (int update = 0; update < 200; ++update) {
+    const int fresh_samples = update % 25 == 24 ? 80 : 1 + int(rng() % 6);
+    for (int k = 0; k < fresh_samples; ++k) h.push(random_sample(frame += 1 + int64_t(rng() % 3), m, 4000, &rng));
+    reader.update(h, m, BitReading{}, 0);
+    TrackBits fresh;
+    read_track_bits(h, m, BitReading{}, 0, &fresh);
+    for (size_t j = 0; j < h.size(); ++j) ASSERT_EQ(reader.bits()[j], fresh[j]) << "update " << update << ", sample " << j;
+  }
+}
+
 }  // namespace
 }  // namespace tetrapulse

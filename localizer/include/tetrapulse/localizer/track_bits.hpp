@@ -39,4 +39,34 @@ using TrackBits = std::array<ReadBit, kTrackHistory>;
 void read_track_bits(const RingBuffer<TrackSample, kTrackHistory>& history, const Modulation& modulation,
                      const BitReading& reading, size_t from, TrackBits* bits);
 
+// One track's bits kept current from frame to frame, re-reading only what can
+// have changed. A sample's bit depends only on the samples within 2 x window of
+// it (its level window, then the clear 1s around it), so once 2 x window newer
+// samples follow it, it is final, unless dropping the oldest samples takes
+// some of its context away, which only the oldest 2 x window can lose. An update
+// re-reads the newest 2 x window + 1 samples and the new ones (their levels
+// only where the window reaches a new sample), and keeps the rest, moved along
+// with the history.
+class TrackBitReader {
+ public:
+  // Afterwards bits()[from, history.size()) are what read_track_bits(history,
+  // modulation, reading, from, ...) reads there. Every call must pass the same
+  // track's history (at most kTrackHistory new samples since the previous
+  // call) and the same modulation and reading.
+  void update(const RingBuffer<TrackSample, kTrackHistory>& history, const Modulation& modulation,
+              const BitReading& reading, size_t from);
+
+  // One value per sample of the history last passed to update() (same indices).
+  const TrackBits& bits() const { return bits_; }
+
+ private:
+  TrackBits bits_{};
+  TrackBits pass1_{};  // each sample read against its window's brightest sample
+  std::array<double, kTrackHistory> bright_{};  // that sample's intensity; 0: none to read against
+  size_t size_ = 0;           // history size at the last update; 0: nothing read yet
+  int64_t newest_frame_ = 0;  // the frame of its newest sample
+  size_t current_from_ = 0;   // bits_[current_from_, size_) were current then
+  size_t pass1_from_ = 0;     // and pass1_, bright_ over [pass1_from_, size_)
+};
+
 }  // namespace tetrapulse
