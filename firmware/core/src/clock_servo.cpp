@@ -32,7 +32,6 @@ ServoTuning ServoTuning::can() {
   t.unlock_count = 10;  // 1 s at 10 Hz: a scheduling hiccup on the sender is not a lost lock
   t.gate_acquiring_ns = 2'000'000;
   t.gate_locked_ns = 300'000;
-  t.gate_ahead_locked_ns = 50'000;  // the window's earliest frame is within microseconds of the floor
   t.gate_growth_ppb = 20'000;
   t.restep_after = 5;
   t.min_baseline_ns = 1'000'000'000;
@@ -93,9 +92,8 @@ int64_t ClockServo::filtered_error(Tick local, int64_t rig_ns) const {
   return best;
 }
 
-int64_t ClockServo::gate(Tick local, int64_t error) const {
-  const int64_t locked = error > 0 ? tuning_.gate_ahead_locked_ns : tuning_.gate_locked_ns;
-  const int64_t base = phase_ == Phase::kLocked ? locked : tuning_.gate_acquiring_ns;
+int64_t ClockServo::gate(Tick local) const {
+  const int64_t base = phase_ == Phase::kLocked ? tuning_.gate_locked_ns : tuning_.gate_acquiring_ns;
   if (!have_accepted_ || local <= last_accepted_.local) return base;
   const int64_t since_ns = mapping_.to_rig(local) - mapping_.to_rig(last_accepted_.local);
   return base + mul_shr_signed(since_ns, tuning_.gate_growth_ppb, 0) / 1'000'000'000;
@@ -109,6 +107,8 @@ SampleVerdict ClockServo::add_sample(Tick local, int64_t rig_ns) {
     case Phase::kIdle:
       step_to(local, rig_ns);
       first_ = Sample{local, rig_ns};
+      acquire_start_rig_ = rig_ns;
+      have_late_ = false;
       last_accepted_ = first_;
       have_accepted_ = true;
       ever_sampled_ = true;
@@ -125,7 +125,7 @@ SampleVerdict ClockServo::add_sample(Tick local, int64_t rig_ns) {
 
   const int64_t error = rig_ns - mapping_.to_rig(local);
   const int64_t tau = rig_ns - last_accepted_.rig;
-  if (abs64(error) > gate(local, error) || tau <= 0) {
+  if (abs64(error) > gate(local) || tau <= 0) {
     ++rejected_;
     if (++bad_in_row_ >= tuning_.restep_after) {
       // Persistent disagreement: the time base moved (or our step was wrong). Start over
@@ -142,24 +142,40 @@ SampleVerdict ClockServo::add_sample(Tick local, int64_t rig_ns) {
   last_error_ = error;
 
   if (phase_ == Phase::kFirstSample) {
-    const int64_t baseline = rig_ns - first_.rig;
-    if (baseline < tuning_.min_baseline_ns) {
+    // Latency only ever delays a sample, so the earliest arrivals (the largest errors) are
+    // the truest: the first half of the baseline moves the starting point to the earliest
+    // of its samples, the second half picks the earliest to take the rate to.
+    ++accepted_;
+    const int64_t baseline = rig_ns - acquire_start_rig_;
+    if (baseline < tuning_.min_baseline_ns / 2) {
+      if (error <= 0) {
+        remember(local, rig_ns);
+        return SampleVerdict::kAccepted;
+      }
+      step_to(local, rig_ns);
+      first_ = Sample{local, rig_ns};
+      last_accepted_ = first_;
       remember(local, rig_ns);
-      ++accepted_;
-      return SampleVerdict::kAccepted;
+      return SampleVerdict::kStepped;
     }
-    // Rate from the first sample to this one (the mapping was exact at the first sample),
-    // then step the phase here: the PI loop starts with both errors small.
-    const int64_t correction = mapping_.correction() + rate_term(256, error, baseline);
+    if (!have_late_ || error > late_.rig - mapping_.to_rig(late_.local)) {
+      late_ = Sample{local, rig_ns};
+      have_late_ = true;
+    }
+    remember(local, rig_ns);
+    if (baseline < tuning_.min_baseline_ns) return SampleVerdict::kAccepted;
+    // The rate from the first sample to the earliest late one (the mapping is exact at the
+    // first), then the phase through that one: the PI loop starts with both errors small.
+    const int64_t late_error = late_.rig - mapping_.to_rig(late_.local);
+    const int64_t correction = mapping_.correction() + rate_term(256, late_error, late_.rig - first_.rig);
     integral_ = clamp64(correction, -ppm_to_correction(tuning_.max_correction_ppm),
                         ppm_to_correction(tuning_.max_correction_ppm));
-    mapping_.set_rate(local, integral_);
-    step_to(local, rig_ns);
+    mapping_.set_rate(late_.local, integral_);
+    step_to(late_.local, late_.rig);
     remember(local, rig_ns);
     last_accepted_ = Sample{local, rig_ns};
     phase_ = Phase::kTracking;
     good_in_row_ = 0;
-    ++accepted_;
     return SampleVerdict::kStepped;
   }
 

@@ -138,39 +138,42 @@ TEST_P(CanLock, LocksWithin5sAt100ppmWith50usJitter) {
 
 INSTANTIATE_TEST_SUITE_P(ClockServo, CanLock, ::testing::Values(-100.0, -20.0, 0.0, 45.0, 100.0));
 
-// A sender that stalls (a loaded host stamping its Syncs late, as under emulation): three
-// FollowUps in a row 120 us later than the true send time, well inside the locked gate but
-// beyond 4 lock thresholds. Reception latency only ever delays a frame, so a sample this far
-// ahead of a locked clock is refused: the state stays locked throughout and the LED edges
-// stay where they were.
-TEST(ClockServo, CanStaysLockedThroughAStalledSender) {
-  TestBoard b(board_at(40, 9'000'000));
-  const int64_t start = 1 * kSecond;
+// A loaded receiver (an emulated machine, a busy host): most Syncs arrive within 50 us, one
+// in five 150..400 us late, the first one among them. Acquisition takes the earliest
+// arrivals, not the first samples, so the board locks close to rig time and stays locked.
+class CanLateSpikes : public ::testing::TestWithParam<uint32_t> {};
+
+TEST_P(CanLateSpikes, LocksWithin200usAndStaysLocked) {
+  const uint32_t seed = GetParam();
+  TestBoard b(board_at(40, 7'000'000 + seed));
+  const int64_t start = 1 * kSecond, end = start + 30 * kSecond;
   b.board.advance_to(start - 100 * kMs);
   b.configure(can_config());
-  const int64_t glitch = start + 20 * kSecond, end = start + 30 * kSecond;
-  const CanRun run = run_can(b, start, glitch, 100 * kMs, 50'000, 11);
-  ASSERT_GE(run.locked_at, 0) << "never locked";
-  const uint32_t rejected_before = b.board.status().sync_rejected;
-  std::mt19937 rng(12);
-  std::uniform_int_distribution<int64_t> jitter(0, 50'000);
-  int unlocked_reports = 0;
-  uint16_t seq = 5000;
-  for (int64_t t = glitch; t < end; t += 100 * kMs, ++seq) {
-    const int64_t late = t < glitch + 300 * kMs ? 120'000 : 0;
-    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{seq}}, t + jitter(rng));
-    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{seq, t + late}}, t + kMs);
-    if (b.sync_state() != SyncState::kLocked) ++unlocked_reports;
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int64_t> jitter(0, 50'000), spike(150'000, 400'000);
+  std::uniform_int_distribution<int> one_in(0, 4);
+  int64_t locked_at = -1;
+  int unlocked_after_lock = 0;
+  uint16_t seq = 0;
+  for (int64_t t = start; t < end; t += 100 * kMs, ++seq) {
+    const int64_t late = t == start || one_in(rng) == 0 ? spike(rng) : jitter(rng);
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{seq}}, t + late);
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{seq, t}}, t + late + kMs);
+    const bool locked = b.sync_state() == SyncState::kLocked;
+    if (locked_at < 0 && locked) locked_at = t;
+    if (locked_at >= 0 && !locked) ++unlocked_after_lock;
   }
   b.board.advance_to(end);
-  const EdgeTiming after = edge_timing(b.board, protocol::TimeBase{0, kMs}, glitch, end);
-  const uint32_t rejected = b.board.status().sync_rejected - rejected_before;
-  std::printf("[measure] can sender stalled 3 x 120 us: %d of 100 samples not locked, %u refused, LED max |err| %.1f us\n",
-              unlocked_reports, rejected, after.max_abs_ns / 1e3);
-  EXPECT_EQ(unlocked_reports, 0);
-  EXPECT_EQ(rejected, 3u);
-  EXPECT_LT(after.max_abs_ns, 20'000.0);
+  ASSERT_GE(locked_at, 0) << "never locked";
+  const EdgeTiming after = edge_timing(b.board, protocol::TimeBase{0, kMs}, locked_at, end);
+  std::printf("[measure] can with 1 in 5 Syncs 150..400 us late (seed %u): lock %.1f s, after lock max |err| %.1f us,"
+              " %d samples not locked\n",
+              seed, static_cast<double>(locked_at - start) / 1e9, after.max_abs_ns / 1e3, unlocked_after_lock);
+  EXPECT_LT(after.max_abs_ns, 200'000.0);
+  EXPECT_EQ(unlocked_after_lock, 0);
 }
+
+INSTANTIATE_TEST_SUITE_P(ClockServo, CanLateSpikes, ::testing::Range(1u, 9u));
 
 // The lock state's hysteresis on the servo alone, with the loop gains at zero so that an
 // offset stays exactly what it is fed: a 1 GHz counter (a tick is a nanosecond), samples

@@ -33,7 +33,7 @@ wait_for 15 grep -q 'clock .* sync locked' /tmp/board-can.txt || {
 locked_at=$(board_count /tmp/board-can.txt 'clock ')
 status=$(tetrapulse status --can vcan0:3 --json) || fail "tetrapulse status over CAN failed"
 echo "$status"
-[ "$(json_field "$status" sync_state)" = locked ] || fail "status says sync_state $(json_field "$status" sync_state)"
+[ "$(json_field "$status" sync_state)" = locked ] || { grep ' clock ' /tmp/board-can.txt; fail "status says sync_state $(json_field "$status" sync_state)"; }
 [ "$(json_field "$status" sync_source)" = can ] || fail "status says sync_source $(json_field "$status" sync_source)"
 wait "$sync_pid" || { cat /tmp/sync.txt; fail "tetrapulse sync --can failed"; }
 cat /tmp/sync.txt
@@ -55,4 +55,4 @@ awk -v skip="$((locked_at + 2))" -v offset="$offset" '
     ms = sq / c; rms = ms > 1 ? ms : 1; for (i = 0; i < 60; i++) rms = (rms + ms / rms) / 2
     printf "can: %d reports after lock: true clock error mean %.0f ns, rms %.0f ns, max |error| %.0f ns; %d not locked\n", c, sum / c, rms, max, bad
     if (max > 200000 || bad > 0) exit 1
-  }' /tmp/board-can.txt || { grep ' clock ' /tmp/board-can.txt | tail -12; fail "the board's clock left 200 us of rig time (or lost lock) under CAN sync"; }
+  }' /tmp/board-can.txt || { grep ' clock ' /tmp/board-can.txt; fail "the board's clock left 200 us of rig time (or lost lock) under CAN sync"; }

@@ -11,15 +11,15 @@
 // unit circle for the gains of ServoTuning. The mapping stays continuous (LED edges never
 // jump) except for the coarse step that acquisition starts with.
 //
-// Acquisition: the first sample steps rig(L) to R; the second (at least min_baseline
-// later) steps again and sets the rate from the two; then the PI loop runs. Locked once
+// Acquisition: the first sample steps rig(L) to R, and so does any sample ahead of the
+// mapping in the first half of min_baseline (latency only delays: the earliest arrival is
+// the truest); at min_baseline the rate is set from that sample to the earliest arrival of
+// the second half and the mapping steps through it; then the PI loop runs. Locked once
 // lock_count consecutive filtered errors are below lock_threshold_ns; unlocked again only
 // after unlock_count consecutive ones above 4 lock_threshold_ns, so a short burst of
 // late or early samples that the loop absorbs does not flap the state. A sample whose error
 // exceeds the gate is an outlier and is refused (a missed or doubled edge, a stale
-// FollowUp; once locked, a sample ahead of the clock by more than gate_ahead_locked_ns,
-// which one-sided reception latency cannot produce but a sender stamping late can);
-// restep_after consecutive outliers mean the time base really moved and start
+// FollowUp); restep_after consecutive outliers mean the time base really moved and start
 // acquisition again. No accepted sample for holdover_after: holdover, on the last rate.
 //
 // Noisy samples (CAN reception latency, one-sided: a frame is never received early)
@@ -42,7 +42,6 @@ struct ServoTuning {
   uint8_t unlock_count = 3;             // consecutive samples above 4 lock_threshold_ns: unlocked
   int64_t gate_acquiring_ns = 50'000;   // outlier gate before lock
   int64_t gate_locked_ns = 1'000;       // outlier gate once locked
-  int64_t gate_ahead_locked_ns = 1'000; // ... for a sample ahead of the clock (error > 0)
   uint32_t gate_growth_ppb = 10'000;    // the gate widens by this rate while no sample is accepted
   uint8_t restep_after = 5;             // consecutive outliers that restart acquisition
   int64_t min_baseline_ns = 5'000'000;  // second acquisition sample at least this long after the first
@@ -97,14 +96,17 @@ class ClockServo {
 
   void step_to(Tick local, int64_t rig_ns);
   int64_t filtered_error(Tick local, int64_t rig_ns) const;
-  int64_t gate(Tick local, int64_t error) const;
+  int64_t gate(Tick local) const;
   void remember(Tick local, int64_t rig_ns);
 
   ServoTuning tuning_;
   ClockMapping mapping_;
   Phase phase_ = Phase::kStopped;
   uint32_t generation_ = 0;
-  Sample first_;
+  Sample first_;           // the earliest arrival of acquisition's first half
+  Sample late_;            // ... and of its second half
+  int64_t acquire_start_rig_ = 0;
+  bool have_late_ = false;
   Sample last_accepted_;
   bool have_accepted_ = false;
   bool ever_sampled_ = false;  // a sample arrived since restart()
