@@ -1,9 +1,7 @@
 // tetrapulse: coded LED targets, identified 6D poses from one camera.
-#include <cstdio>
-#include <exception>
-
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "run_app.hpp"
 #include "vision_commands.hpp"
 #include "vision_forward.hpp"
 
@@ -17,7 +15,7 @@ int main(int argc, char** argv) {
   add_version_command(app, &result);
   add_codebook_command(app, &result);
   add_target_command(app, &result);
-  add_vision_placeholders(app, argc, argv, &result);
+  add_vision_forwarders(app, argc, argv, &result);
   add_list_command(app, &result);
   add_info_command(app, &result);
   add_config_command(app, &result);
@@ -25,14 +23,5 @@ int main(int argc, char** argv) {
   add_status_command(app, &result);
   add_flash_command(app, &result);
   add_sync_command(app, &result);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitUsage;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "tetrapulse: internal error: %s\n", e.what());
-    return kExitFailure;
-  }
-  return result;
+  return run_app(app, argc, argv, result);
 }

@@ -29,7 +29,7 @@ int run_vision_program(int argc, char** argv) {
   return kExitFailure;
 }
 
-void add_vision_placeholders(CLI::App& app, int argc, char** argv, int* result) {
+void add_vision_forwarders(CLI::App& app, int argc, char** argv, int* result) {
   for (const VisionCommand& c : kVisionCommands) {
     auto* cmd = app.add_subcommand(c.name, c.summary);
     // Everything after the name, --help included, is the vision program's to read.

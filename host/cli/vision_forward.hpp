@@ -10,6 +10,6 @@ namespace tetrapulse::cli {
 int run_vision_program(int argc, char** argv);
 
 // Entries in `app` for the help text; running one hands over like run_vision_program.
-void add_vision_placeholders(CLI::App& app, int argc, char** argv, int* result);
+void add_vision_forwarders(CLI::App& app, int argc, char** argv, int* result);
 
 }  // namespace tetrapulse::cli

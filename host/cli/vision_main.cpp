@@ -1,10 +1,8 @@
 // tetrapulse-vision: the commands of tetrapulse that read or write images
 // (vision_commands.hpp); `tetrapulse sim|localize|eval|demo` runs this program.
-#include <cstdio>
-#include <exception>
-
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "run_app.hpp"
 
 int main(int argc, char** argv) {
   using namespace tetrapulse::cli;
@@ -17,14 +15,5 @@ int main(int argc, char** argv) {
   add_localize_command(app, &result);
   add_eval_command(app, &result);
   add_demo_command(app, &result);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitUsage;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "tetrapulse: internal error: %s\n", e.what());
-    return kExitFailure;
-  }
-  return result;
+  return run_app(app, argc, argv, result);
 }
