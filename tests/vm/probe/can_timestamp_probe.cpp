@@ -149,20 +149,26 @@ int Probe(const std::string& iface) {
   frame.can_dlc = 2;
   frame.data[0] = 0x5A;
   frame.data[1] = 0xA5;
-  timespec before{};
-  clock_gettime(CLOCK_REALTIME, &before);
-  const int64_t sent_ns = Nanoseconds(before);
-  if (write(fd, &frame, sizeof(frame)) != static_cast<ssize_t>(sizeof(frame))) {
-    std::fprintf(stderr, "can_timestamp_probe: sending on %s: %s\n", iface.c_str(), std::strerror(errno));
-    return 1;
-  }
-  // Give every kind of timestamp a second to arrive (TCG is slow).
+  // Receive stamps switch on through a deferred static key (net_enable_timestamp() schedules
+  // a work item), so on a machine where no socket wanted them a moment ago the first frames
+  // can come back unstamped: send again until one is, a few times.
   Findings found;
-  for (int tick = 0; tick < 10; ++tick) {
-    pollfd p{fd, POLLIN | POLLERR, 0};
-    if (poll(&p, 1, 100) <= 0) continue;
-    if ((p.revents & POLLERR) != 0) ReadErrorQueue(fd, sent_ns, &found);
-    if ((p.revents & POLLIN) != 0) ReadOwnEcho(fd, sent_ns, &found);
+  int frames_sent = 0;
+  for (; frames_sent < 5 && !found.own_echo_stamped; ++frames_sent) {
+    timespec before{};
+    clock_gettime(CLOCK_REALTIME, &before);
+    const int64_t sent_ns = Nanoseconds(before);
+    if (write(fd, &frame, sizeof(frame)) != static_cast<ssize_t>(sizeof(frame))) {
+      std::fprintf(stderr, "can_timestamp_probe: sending on %s: %s\n", iface.c_str(), std::strerror(errno));
+      return 1;
+    }
+    // Give every kind of timestamp a second to arrive (TCG is slow).
+    for (int tick = 0; tick < 10; ++tick) {
+      pollfd p{fd, POLLIN | POLLERR, 0};
+      if (poll(&p, 1, 100) <= 0) continue;
+      if ((p.revents & POLLERR) != 0) ReadErrorQueue(fd, sent_ns, &found);
+      if ((p.revents & POLLIN) != 0) ReadOwnEcho(fd, sent_ns, &found);
+    }
   }
   close(fd);
 
@@ -173,6 +179,7 @@ int Probe(const std::string& iface) {
   std::printf("\ncan_timestamp_probe: own frame looped back: %s, rx software timestamp: %s", YesNo(found.own_echo),
               YesNo(found.own_echo_stamped));
   if (found.own_echo_stamped) std::printf(" (%lld ns after send())", static_cast<long long>(found.own_echo_delay_ns));
+  std::printf("\ncan_timestamp_probe: frames sent: %d", frames_sent);
   std::printf("\ncan_timestamp_probe: RESULT tx_sched=%s tx_software=%s own_echo_rx_timestamp=%s\n",
               YesNo(found.tx_sched), YesNo(found.tx_software), YesNo(found.own_echo_stamped));
   return found.own_echo ? 0 : 1;
