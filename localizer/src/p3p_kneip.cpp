@@ -104,10 +104,12 @@ int p3p_kneip(const Bearing3& x, const Point3x3& X, PoseCandidates* out) {
     // (|cos_theta| beyond 1 is not a pose either).
     const V3 Y3 = in_camera(P3);
     const V3 e3 = cross(Y3, f3);
-    const bool valid = (std::abs(roots[i]) <= 1.0 + 1e-9) & (dot(Y3, f3) > 0) &
-                       (dot(e3, e3) < kMaxBearingError * kMaxBearingError * dot(Y3, Y3)) &
-                       (dot(x0, in_camera(X0)) > 0) & (dot(x1, in_camera(X1)) > 0) &
-                       std::isfinite(R0.x + R0.y + R0.z + R1.x + R1.y + R1.z + R2.x + R2.y + R2.z + t.x + t.y + t.z);
+    // Every test evaluated and and-ed as integers: no branch per test.
+    const unsigned valid =
+        unsigned{std::abs(roots[i]) <= 1.0 + 1e-9} & unsigned{dot(Y3, f3) > 0} &
+        unsigned{dot(e3, e3) < kMaxBearingError * kMaxBearingError * dot(Y3, Y3)} &
+        unsigned{dot(x0, in_camera(X0)) > 0} & unsigned{dot(x1, in_camera(X1)) > 0} &
+        unsigned{std::isfinite(R0.x + R0.y + R0.z + R1.x + R1.y + R1.z + R2.x + R2.y + R2.z + t.x + t.y + t.z)};
     // Written whether valid or not (the next root overwrites it): no branch.
     Pose& pose = (*out)[n];
     pose.R << R0.x, R0.y, R0.z, R1.x, R1.y, R1.z, R2.x, R2.y, R2.z;
