@@ -162,8 +162,10 @@ SampleVerdict ClockServo::add_sample(Tick local, int64_t rig_ns) {
       late_ = Sample{local, rig_ns};
       have_late_ = true;
     }
-    remember(local, rig_ns);
-    if (baseline < tuning_.min_baseline_ns) return SampleVerdict::kAccepted;
+    if (baseline < tuning_.min_baseline_ns) {
+      remember(local, rig_ns);
+      return SampleVerdict::kAccepted;
+    }
     // The rate from the first sample to the earliest late one (the mapping is exact at the
     // first), then the phase through that one: the PI loop starts with both errors small.
     const int64_t late_error = late_.rig - mapping_.to_rig(late_.local);
