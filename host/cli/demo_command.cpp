@@ -59,10 +59,9 @@ DatasetResult<Localized> localize_dataset(const RigDataset& dataset, const std::
   ProgressBar progress(source->count(), !quiet);
   Localized out;
   auto frames = localize_frames(*source, localizer, [&](const Frame& f, const std::vector<TargetPose>& poses) {
-    const int64_t mid = f.timestamp_ns + f.exposure_ns / 2;
     for (const TargetPose& p : poses) {
-      if (auto r = writer->write(f.frame, mid, p); !r) return r;
-      out.rows.push_back(PoseRecord{f.frame, mid, p.target_id, PoseFields::from(p.pose), p.markers, p.rms_px});
+      if (auto r = writer->write(f.frame, p); !r) return r;
+      out.rows.push_back(PoseRecord{f.frame, p.mid_exposure_ns, p.target_id, PoseFields::from(p.pose), p.markers, p.rms_px});
     }
     progress.advance();
     return DatasetResult<void>{};

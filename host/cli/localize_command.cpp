@@ -114,13 +114,12 @@ int run_localize(const LocalizeArgs& a) {
   const bool print = live && a.out != "-";  // a live camera prints poses as they come
   ProgressBar progress(source->count(), !a.quiet && !live);
   const auto on_frame = [&](const Frame& f, const std::vector<TargetPose>& poses) -> DatasetResult<void> {
-    const int64_t mid = f.timestamp_ns + f.exposure_ns / 2;
     for (const TargetPose& p : poses) {
       if (writer) {
-        if (auto r = writer->write(f.frame, mid, p); !r) return r;
+        if (auto r = writer->write(f.frame, p); !r) return r;
       }
       if (print) {
-        std::fputs(format_pose_line(format, f.frame, mid, p).c_str(), stdout);
+        std::fputs(format_pose_line(format, f.frame, p).c_str(), stdout);
         std::fflush(stdout);
       }
     }

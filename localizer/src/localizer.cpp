@@ -547,6 +547,7 @@ std::vector<TargetPose> Localizer::State::solve_poses(int64_t mid) {
     tt.last_pose_ns = mid;
     TargetPose p;
     p.target_id = target.id;
+    p.mid_exposure_ns = mid;
     p.pose = solved->pose;
     p.status = solved->status;
     p.markers = int(solved->used.size());

@@ -19,7 +19,8 @@ const char* pose_format_name(PoseFormat format) {
   return "csv";
 }
 
-std::string format_pose_line(PoseFormat format, int64_t frame, int64_t mid_exposure_ns, const TargetPose& pose) {
+std::string format_pose_line(PoseFormat format, int64_t frame, const TargetPose& pose) {
+  const int64_t mid_exposure_ns = pose.mid_exposure_ns;
   const PoseFields f = PoseFields::from(pose.pose);
   switch (format) {
     case PoseFormat::kCsv: {
@@ -101,10 +102,10 @@ DatasetResult<PoseWriter::File*> PoseWriter::file_for(int target_id) {
   return &files_.emplace(key, file).first->second;
 }
 
-DatasetResult<void> PoseWriter::write(int64_t frame, int64_t mid_exposure_ns, const TargetPose& pose) {
+DatasetResult<void> PoseWriter::write(int64_t frame, const TargetPose& pose) {
   auto file = file_for(pose.target_id);
   if (!file) return tl::unexpected(file.error());
-  const std::string line = format_pose_line(format_, frame, mid_exposure_ns, pose);
+  const std::string line = format_pose_line(format_, frame, pose);
   if (std::fputs(line.c_str(), (*file)->stream) < 0) {
     return dataset_error((*file)->path, 0, std::string("cannot write: ") + std::strerror(errno));
   }

@@ -50,6 +50,11 @@ class PoseWriterTest : public ::testing::Test {
     return p;
   }
 
+  static TargetPose at(int64_t mid_exposure_ns, TargetPose p) {
+    p.mid_exposure_ns = mid_exposure_ns;
+    return p;
+  }
+
   fs::path dir = fs::temp_directory_path() / ("tp_pose_writer_" + std::to_string(::getpid()));
   TargetsFile targets;
 };
@@ -58,8 +63,8 @@ TEST_F(PoseWriterTest, CsvReadsBackExactly) {
   const std::string path = (dir / "poses.csv").string();
   auto w = PoseWriter::open(path, PoseFormat::kCsv, targets);
   ASSERT_TRUE(w) << w.error().what();
-  ASSERT_TRUE(w->write(0, 5'000'000, pose(3, 0.1)));
-  ASSERT_TRUE(w->write(1, 15'000'000, pose(8, 0.2)));
+  ASSERT_TRUE(w->write(0, at(5'000'000, pose(3, 0.1))));
+  ASSERT_TRUE(w->write(1, at(15'000'000, pose(8, 0.2))));
   EXPECT_FALSE(fs::exists(path));  // written to PATH.tmp until closed
   ASSERT_TRUE(w->close());
   auto rows = read_poses_csv(path);
@@ -80,9 +85,9 @@ TEST_F(PoseWriterTest, TumWritesOneTrajectoryPerTarget) {
   const std::string path = (dir / "traj.txt").string();
   auto w = PoseWriter::open(path, PoseFormat::kTum, targets);
   ASSERT_TRUE(w) << w.error().what();
-  ASSERT_TRUE(w->write(0, 5'000'000, pose(3, 0.1)));
-  ASSERT_TRUE(w->write(0, 5'000'000, pose(8, 0.2)));
-  ASSERT_TRUE(w->write(1, 15'000'000, pose(3, 0.3)));
+  ASSERT_TRUE(w->write(0, at(5'000'000, pose(3, 0.1))));
+  ASSERT_TRUE(w->write(0, at(5'000'000, pose(8, 0.2))));
+  ASSERT_TRUE(w->write(1, at(15'000'000, pose(3, 0.3))));
   ASSERT_TRUE(w->close());
   const std::string three = read(dir / "traj.target3.txt"), eight = read(dir / "traj.target8.txt");
   EXPECT_EQ(std::count(three.begin(), three.end(), '\n') - (three.rfind('#', 0) == 0), 2);
@@ -94,8 +99,8 @@ TEST_F(PoseWriterTest, JsonLinesCarryStatusAndCovariance) {
   const std::string path = (dir / "poses.jsonl").string();
   auto w = PoseWriter::open(path, PoseFormat::kJsonLines, targets);
   ASSERT_TRUE(w) << w.error().what();
-  ASSERT_TRUE(w->write(0, 5'000'000, pose(3, 0.1)));
-  ASSERT_TRUE(w->write(0, 5'000'000, pose(8, 0.2)));
+  ASSERT_TRUE(w->write(0, at(5'000'000, pose(3, 0.1))));
+  ASSERT_TRUE(w->write(0, at(5'000'000, pose(8, 0.2))));
   ASSERT_TRUE(w->close());
   std::istringstream in(read(path));
   std::string first, second;

@@ -136,7 +136,7 @@ tl::expected<ScenarioRun, std::string> run_scenario(const sim::Scenario& scenari
     for (const TargetPose& p : poses) {
       PoseRecord r;
       r.frame = f.frame;
-      r.timestamp_ns = f.timestamp_ns + f.exposure_ns / 2;
+      r.timestamp_ns = p.mid_exposure_ns;
       r.target = p.target_id;
       r.pose = PoseFields::from(p.pose);
       r.markers = p.markers;

@@ -65,6 +65,7 @@ struct LocalizerOptions {
 
 struct TargetPose {
   int target_id = 0;
+  int64_t mid_exposure_ns = 0;  // rig time the pose holds at: the middle of the frame's exposure
   Pose pose;
   PoseStatus status = PoseStatus::kAllMarkers;
   int markers = 0;       // markers the pose used

@@ -30,7 +30,7 @@ class PoseWriter {
   PoseWriter& operator=(PoseWriter&&) noexcept;
   ~PoseWriter();
 
-  DatasetResult<void> write(int64_t frame, int64_t mid_exposure_ns, const TargetPose& pose);
+  DatasetResult<void> write(int64_t frame, const TargetPose& pose);  // at pose.mid_exposure_ns
   // Flushes, closes and renames into place.
   DatasetResult<void> close();
 
@@ -52,6 +52,6 @@ class PoseWriter {
 };
 
 // One poses.csv line (with newline) / TUM line / JSON line for a pose.
-std::string format_pose_line(PoseFormat format, int64_t frame, int64_t mid_exposure_ns, const TargetPose& pose);
+std::string format_pose_line(PoseFormat format, int64_t frame, const TargetPose& pose);
 
 }  // namespace tetrapulse
