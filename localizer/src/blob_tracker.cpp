@@ -145,11 +145,13 @@ void BlobTracker::update(const ExposureStamp& frame, const BlobExtraction& extra
   }
   assignment_.solve(cost_.data(), rows, cols, &assigned_);
   blob_taken_.assign(size_t(blobs), 0);
+  blob_track_.assign(size_t(blobs), -1);
   for (int r = 0; r < rows; ++r) {
     const int c = assigned_[size_t(r)];
     if (c >= 0 && c < blobs) {
       add_detection(&tracks_[open_tracks_[size_t(r)]], frame, extraction.blobs[size_t(c)]);
       blob_taken_[size_t(c)] = 1;
+      blob_track_[size_t(c)] = tracks_[open_tracks_[size_t(r)]].id_;
     }
   }
 
@@ -163,6 +165,7 @@ void BlobTracker::update(const ExposureStamp& frame, const BlobExtraction& extra
     if (blob_taken_[size_t(c)]) continue;
     BlobTrack track;
     track.id_ = next_id_++;
+    blob_track_[size_t(c)] = track.id_;
     add_detection(&track, frame, extraction.blobs[size_t(c)]);
     tracks_.push_back(track);
   }

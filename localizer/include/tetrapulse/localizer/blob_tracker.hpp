@@ -131,6 +131,11 @@ class BlobTracker {
 
   const std::vector<BlobTrack>& tracks() const { return tracks_; }
   const BlobTrack* find(int64_t id) const;
+  // After update(): the track that took extraction.blobs[index] (an existing
+  // track, or one it started), -1 when none did or the index is out of range.
+  int64_t track_of_blob(size_t index) const {
+    return index < blob_track_.size() ? blob_track_[index] : -1;
+  }
 
   // An ROI per track for the frame exposed at `frame` (tag = track id),
   // centred on the track's prediction, of half side = its gate radius.
@@ -149,6 +154,7 @@ class BlobTracker {
   std::vector<int> assigned_;
   std::vector<size_t> open_tracks_;
   std::vector<char> blob_taken_;
+  std::vector<int64_t> blob_track_;
 };
 
 }  // namespace tetrapulse

@@ -1,24 +1,31 @@
 #pragma once
 // The localizer: images in, identified 6D poses out (Breitenmoser, Kneip &
-// Siegwart 2011, Sec. IV, with temporal codes). Per frame:
-//   1. prediction: each tracked target's pose at mid-exposure (pose_predictor.hpp),
-//      projected into its markers' pixels and regions of interest;
-//   2. blobs (blob_extractor.hpp) in those ROIs; the whole image on the first
-//      frame and every full_search_interval frames while some target, or some
-//      marker of a tracked target, is not tracked;
-//   3. blob tracks (blob_tracker.hpp), whose samples carry each marker's light;
-//   4. codes read from the tracks (track_bits.hpp) identify targets and markers
-//      together with geometry (target_identifier.hpp); a tracked target's tracks
-//      keep being checked against their codes, and a track whose bits stop
-//      matching is dropped from it; a marker that reappears near its predicted
-//      pixel rejoins by geometry and is then checked the same way. Frequency
-//      codes (square waves) are told from the whole exposure-integrated light
-//      of a track (frequency_identifier.hpp), free-running or on the time base,
-//      never from single bits, and checked again the same way once claimed;
-//   5. pose from the identified markers seen this frame (marker_pose.hpp).
-// Knows nothing of boards or buses: only pixels, the targets file and the rig
-// timestamps of exposures. Poses as pose.hpp (p_C = R p_T + t, metres, OpenCV
-// camera frame); times in integer nanoseconds of rig time. Not thread-safe.
+// Siegwart 2011, Sec. IV, with temporal codes). A frame runs these stages, each
+// a file of its own under src/ (localizer.cpp reads top to bottom):
+//   1. prediction and ROI planning (target_roster, roi_planner): each identified
+//      target's pose at mid-exposure (pose_predictor.hpp), projected into its
+//      markers' pixels; an ROI per blob track and a search ROI per marker that
+//      has no track;
+//   2. blobs (frame_blobs; blob_extractor.hpp) in those ROIs, with the fallbacks
+//      a tracked scene needs, and the whole image on the first frame and in
+//      bursts every full_search_interval frames while some target, or some
+//      marker of an identified target, is not tracked;
+//   3. tracks (blob_tracker.hpp), whose samples carry each marker's light; new
+//      tracks at a missing marker's predicted pixel rejoin it (marker_tracks);
+//   4. code reading (code_reading; track_bits.hpp, frequency_identifier.hpp):
+//      bits of every track, and the square wave of a track's exposure-integrated
+//      light when the rig has frequency codes;
+//   5. code checks (code_checks): an identified target's tracks keep being
+//      checked against their codes, under its board's clock (target_clock: the
+//      free-running estimate), and leave it when they stop matching;
+//   6. identification (new_targets; target_identifier.hpp): codes and geometry
+//      together name targets and markers among the tracks nobody owns;
+//   7. pose (target_poses; marker_pose.hpp) from the identified markers seen this
+//      frame, from the prediction — in the frame a target is identified, the
+//      identification's refined pose.
+// Knows nothing of boards, buses or file formats: only pixels, the targets and
+// the rig timestamps of exposures. Poses as pose.hpp (p_C = R p_T + t, metres,
+// OpenCV camera frame); times in integer nanoseconds of rig time. Not thread-safe.
 #include <array>
 #include <cstdint>
 #include <memory>

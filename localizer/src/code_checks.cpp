@@ -1,0 +1,69 @@
+#include "code_checks.hpp"
+
+#include <algorithm>
+
+#include "tetrapulse/localizer/code_match.hpp"
+
+namespace tetrapulse::localizer_internal {
+
+CodeChecks::CodeChecks(const TargetsFile& targets, std::vector<std::array<int, 4>> frequency_of,
+                       CodeCheckOptions options)
+    : targets_(targets),
+      frequency_of_(std::move(frequency_of)),
+      options_(options),
+      coded_(targets.modulation.kind != ModulationKind::kConstant),
+      free_running_(coded_ && !targets.timebase.synchronized) {}
+
+bool CodeChecks::has_binary_codes(size_t t) const {
+  for (int m = 0; m < 4; ++m)
+    if (targets_.targets[t].markers[size_t(m)].code && frequency_of_[t][size_t(m)] < 0) return true;
+  return false;
+}
+
+void CodeChecks::refit_clock(const BlobTracker& tracker, const CodeReading& reading, size_t t, int64_t mid_ns,
+                             TrackedTarget* tt) const {
+  const Target& target = targets_.targets[t];
+  uint32_t length = 1;
+  for (const Marker& m : target.markers)
+    if (m.code) length = std::max(length, m.code->length);
+  tt->clock.refit(mid_ns, length, [&](const CodeClock& clock) {
+    double cost = 0;
+    for (int m = 0; m < 4; ++m) {
+      const BlobTrack* track = tracker.find(tt->track_of[size_t(m)]);
+      if (!track || !target.markers[size_t(m)].code || frequency_of_[t][size_t(m)] >= 0) continue;
+      cost += match_code(track->history(), reading.bits(track->id()),
+                         CodeReading::first_of_newest(*track, options_.clock_samples), clock,
+                         *target.markers[size_t(m)].code)
+                  .cost();
+    }
+    return cost;
+  });
+}
+
+void CodeChecks::check(const BlobTracker& tracker, CodeReading& reading, int64_t frame, int64_t mid_ns,
+                       TargetRoster* roster) const {
+  if (!coded_) return;
+  for (size_t t = 0; t < roster->size(); ++t) {
+    TrackedTarget& tt = (*roster)[t];
+    if (!tt.identified) continue;
+    if (free_running_ && has_binary_codes(t)) refit_clock(tracker, reading, t, mid_ns, &tt);
+    for (int m = 0; m < 4; ++m) {
+      const Marker& marker = targets_.targets[t].markers[size_t(m)];
+      const BlobTrack* track = tracker.find(tt.track_of[size_t(m)]);
+      if (!track || !marker.code) continue;
+      if (const int expected = frequency_of_[t][size_t(m)]; expected >= 0) {
+        if ((frame + track->id()) % std::max(1, options_.frequency_check_frames) != 0) continue;
+        const FrequencyDecision* d = reading.frequency_decision(track->id());
+        if (d && d->decided() && (d->kind != FrequencyDecision::Kind::kFrequency || d->code != expected))
+          tt.track_of[size_t(m)] = -1;
+        continue;
+      }
+      const CodeMatch match = match_code(track->history(), reading.bits(track->id()),
+                                         CodeReading::first_of_newest(*track, options_.verify_samples),
+                                         tt.clock.fitted(), *marker.code);
+      if (match.mismatches > options_.verify_max_errors) tt.track_of[size_t(m)] = -1;
+    }
+  }
+}
+
+}  // namespace tetrapulse::localizer_internal

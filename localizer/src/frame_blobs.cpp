@@ -1,0 +1,102 @@
+#include "frame_blobs.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace tetrapulse::localizer_internal {
+
+int search_burst_frames(const TargetsFile& targets, int64_t frame_period_ns, int64_t exposure_ns) {
+  if (targets.modulation.kind == ModulationKind::kConstant || frame_period_ns <= 0) return 1;
+  const int64_t T = targets.timebase.bit_period_ns;
+  const double frames_per_bit = double(T) / double(frame_period_ns);
+  int frames = 1;
+  for (const Target& target : targets.targets)
+    for (const Marker& marker : target.markers) {
+      if (!marker.code) continue;
+      const int dark = frames_per_bit < 1.0
+                           ? longest_dark_frames(*marker.code, T, frame_period_ns, exposure_ns)
+                           : int(std::ceil(longest_zero_run(*marker.code) * frames_per_bit - 1e-9));
+      frames = std::max(frames, dark + 1);
+    }
+  return std::min(frames, 16);
+}
+
+FrameBlobs::FrameBlobs(const BlobExtractorConfig& config, int full_search_interval)
+    : extractor_(config), full_search_interval_(full_search_interval) {}
+
+void FrameBlobs::set_search_burst(int frames) {
+  burst_ = frames;
+  burst_left_ = frames - 1;  // the first burst began with frame 0
+}
+
+tl::expected<void, BlobInputError> FrameBlobs::extract(const cv::Mat& image, const RoiPlan& plan, bool needs_search,
+                                                       int expected_whole) {
+  const bool first = frames_++ == 0;
+  hits_.clear();
+  searched_ = false;
+  if (auto r = extractor_.extract(image, plan.rois, &extraction_); !r) return r;
+  patch_absent_rois(plan);
+  for (size_t i = 0; i < extraction_.rois.size(); ++i) {
+    const RoiMeasurement& m = extraction_.rois[i];
+    if (!plan.purposes[i].search || !m.detected()) continue;
+    hits_.push_back(SearchHit{extraction_.blobs.size(), *plan.purposes[i].search});
+    extraction_.blobs.push_back(m.blob);
+  }
+  if (!search_now(first, needs_search)) return {};
+  if (auto r = extractor_.extract(image, expected_whole, &whole_); !r) return r;
+  add_whole_image_blobs(plan);
+  return {};
+}
+
+void FrameBlobs::patch_absent_rois(const RoiPlan& plan) {
+  for (size_t i = 0; i < extraction_.rois.size(); ++i) {
+    RoiMeasurement& m = extraction_.rois[i];
+    if (m.status != RoiStatus::kAbsent) continue;
+    const BlobRoi& roi = plan.rois[i];
+    int nearest = -1;
+    double nearest_d = 2 * roi.radius;
+    for (size_t b = 0; b < extraction_.blobs.size(); ++b) {
+      const double d = (extraction_.blobs[b].centroid - roi.center).norm();
+      if (d < nearest_d) nearest_d = d, nearest = int(b);
+    }
+    if (nearest < 0) continue;
+    const Eigen::Vector2d& p = extraction_.blobs[size_t(nearest)].centroid;
+    bool closer = false;
+    for (size_t j = 0; j < plan.rois.size() && !closer; ++j)
+      closer = j != i && (p - plan.rois[j].center).norm() < nearest_d;
+    if (closer) continue;
+    m.status = RoiStatus::kDetected;
+    m.blob = extraction_.blobs[size_t(nearest)];
+    m.position = m.blob.centroid;
+    m.intensity = m.blob.intensity;
+    extraction_.blobs.erase(extraction_.blobs.begin() + nearest);
+  }
+}
+
+bool FrameBlobs::search_now(bool first, bool needs_search) {
+  if (first || (needs_search && (burst_left_ > 0 || frames_since_search_ + 1 >= full_search_interval_))) {
+    if (burst_left_ == 0) burst_left_ = std::max(1, burst_);
+    --burst_left_;
+    searched_ = true;
+    frames_since_search_ = 0;
+    return true;
+  }
+  burst_left_ = 0;
+  ++frames_since_search_;
+  return false;
+}
+
+void FrameBlobs::add_whole_image_blobs(const RoiPlan& plan) {
+  const size_t found_in_rois = extraction_.blobs.size();
+  for (const Blob& b : whole_.blobs) {
+    bool known = false;
+    for (size_t i = 0; i < plan.rois.size() && !known; ++i) {
+      const Eigen::Vector2d d = b.centroid - plan.rois[i].center;
+      known = std::abs(d.x()) <= plan.rois[i].radius + 1 && std::abs(d.y()) <= plan.rois[i].radius + 1;
+    }
+    for (size_t i = 0; i < found_in_rois && !known; ++i) known = (b.centroid - extraction_.blobs[i].centroid).norm() < 3;
+    if (!known) extraction_.blobs.push_back(b);
+  }
+}
+
+}  // namespace tetrapulse::localizer_internal

@@ -1,0 +1,36 @@
+#include "new_targets.hpp"
+
+namespace tetrapulse::localizer_internal {
+
+NewTargets::NewTargets(const CameraModel& camera, const TargetsFile& targets, const IdentificationOptions& options,
+                       bool frequency_coded)
+    : identifier_(camera, targets, options), frequency_coded_(frequency_coded) {}
+
+std::vector<size_t> NewTargets::identify(const BlobTracker& tracker, CodeReading& reading, const ExposureStamp& stamp,
+                                         TargetRoster* roster) {
+  std::vector<size_t> found;
+  std::vector<bool> wanted(roster->size());
+  bool any = false;
+  for (size_t t = 0; t < roster->size(); ++t) any |= (wanted[t] = !(*roster)[t].identified);
+  if (!any) return found;
+  candidates_.clear();
+  for (const BlobTrack& track : tracker.tracks()) {
+    if (roster->owner(track.id())) continue;
+    CandidateTrack c;
+    c.track = &track;
+    c.bits = &reading.bits(track.id());
+    const TrackSample& newest = track.history().newest();
+    c.pixel = newest.frame == stamp.frame && newest.detected ? newest.centroid : track.predict(stamp.middle_ns());
+    c.radius_px = track.last_blob().radius;
+    if (frequency_coded_) c.frequency_code = reading.frequency_code(track.id());
+    candidates_.push_back(c);
+  }
+  if (candidates_.size() < 4) return found;
+  for (const Identification& id : identifier_.identify(candidates_, wanted)) {
+    (*roster)[id.target].identify(id.track_of, id.clock, id.pose, stamp.middle_ns());
+    found.push_back(id.target);
+  }
+  return found;
+}
+
+}  // namespace tetrapulse::localizer_internal

@@ -1,0 +1,41 @@
+#pragma once
+// Internal to Localizer, stage 1 of a frame: where to look.
+//   - one ROI per blob track, at the track's own constant-velocity prediction
+//     within its gate; for a track that is an identified target's marker, once
+//     the target's pose has a velocity (two poses), where the predicted pose puts
+//     the marker instead, widened to cover the track's own prediction too when a
+//     recently seen track disagrees (the target turned since its last pose); that
+//     prediction also gates the track in the tracker;
+//   - one search ROI per marker of an identified target that has no track, where
+//     the predicted pose puts it, when that lies in the image.
+// Every ROI says what it is for (RoiPurpose): the tracker takes a track's ROI's
+// measurement as that track's sample; a search ROI's blob is a new blob that its
+// marker then claims. Pixels in the OpenCV convention; times in rig-time ns.
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "target_roster.hpp"
+#include "tetrapulse/localizer/blob.hpp"
+#include "tetrapulse/localizer/blob_tracker.hpp"
+
+namespace tetrapulse::localizer_internal {
+
+// A marker's track is predicted from its own motion this many frames after it was last seen.
+inline constexpr int kMaxHintFrames = 2;
+
+struct RoiPurpose {
+  int64_t track_id = -1;            // the track whose ROI this is, or -1 for a search
+  std::optional<MarkerRef> search;  // the marker a search ROI looks for
+};
+
+struct RoiPlan {
+  std::vector<BlobRoi> rois;        // BlobRoi::tag = the track id (-1 for a search)
+  std::vector<RoiPurpose> purposes;  // one per ROI
+  std::vector<TrackGate> gates;     // tracks gated by their target's predicted pose
+};
+
+void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const CameraModel& camera, int64_t mid_ns,
+               int64_t frame_period_ns, double min_roi_radius_px, RoiPlan* plan);
+
+}  // namespace tetrapulse::localizer_internal

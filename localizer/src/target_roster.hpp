@@ -1,0 +1,85 @@
+#pragma once
+// Internal to Localizer: what it knows of each target of the targets file from
+// frame to frame — whether it is identified, which blob track is which of its
+// markers, how its pose moves and where it is predicted this frame, and its
+// board's clock. Poses as pose.hpp; pixels OpenCV; times in rig-time ns.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "target_clock.hpp"
+#include "tetrapulse/localizer/blob_tracker.hpp"
+#include "tetrapulse/localizer/camera_model.hpp"
+#include "tetrapulse/localizer/pose_predictor.hpp"
+#include "tetrapulse/localizer/targets.hpp"
+
+namespace tetrapulse::localizer_internal {
+
+// A marker of a target: index into TargetsFile::targets, and 0..3.
+struct MarkerRef {
+  size_t target = 0;
+  int marker = 0;
+};
+
+struct TrackedTarget {
+  bool identified = false;
+  std::array<int64_t, 4> track_of{-1, -1, -1, -1};  // blob track of each marker, -1: none
+  std::array<int, 4> outlier_frames{};              // frames in a row each was left out of the pose
+  PosePredictor predictor;
+  std::optional<Pose> predicted;  // at this frame's mid-exposure
+  std::optional<Pose> seed;       // the identification's pose, until the first measured one
+  int64_t last_pose_ns = 0;
+  double prediction_error_px = 2;  // running mean of |observed - predicted| marker pixels
+  TargetClock clock;
+
+  // Identified by `clock` and `pose` at `mid_ns`, its markers on `tracks`.
+  void identify(const std::array<int64_t, 4>& tracks, const CodeClock& code_clock, const Pose& pose, int64_t mid_ns);
+  void forget();
+  void release(int marker) {
+    track_of[size_t(marker)] = -1;
+    outlier_frames[size_t(marker)] = 0;
+  }
+  void assign(int marker, int64_t track_id) {
+    track_of[size_t(marker)] = track_id;
+    outlier_frames[size_t(marker)] = 0;
+  }
+};
+
+class TargetRoster {
+ public:
+  TargetRoster(const CameraModel& camera, const TargetsFile& targets, const PredictionOptions& prediction,
+               double min_roi_radius_px);
+
+  size_t size() const { return tracked_.size(); }
+  TrackedTarget& operator[](size_t t) { return tracked_[t]; }
+  const TrackedTarget& operator[](size_t t) const { return tracked_[t]; }
+
+  // Each identified target's pose at `mid_ns` (the seed until a pose is measured).
+  void predict(int64_t mid_ns);
+  // Markers lose the tracks that ended.
+  void drop_ended_tracks(const BlobTracker& tracker);
+
+  // The identified target and marker that `track_id` is, if any.
+  std::optional<MarkerRef> owner(int64_t track_id) const;
+  // Some target is not identified, or some marker of an identified one has no track.
+  bool needs_search() const;
+
+  // Where the predicted pose puts marker `m` of target `t` (false without a
+  // prediction, or behind the camera); its image radius when `radius_px` is given.
+  bool project_marker(size_t t, int m, Eigen::Vector2d* px, double* radius_px = nullptr) const;
+  // Half side of the square a target's markers are searched in: the prediction's
+  // recent error, growing while no pose comes (extrapolating further, the
+  // regression's error grows with the acceleration). frame_period_ns 0: unknown yet.
+  double roi_radius(size_t t, int64_t mid_ns, int64_t frame_period_ns) const;
+
+ private:
+  const CameraModel& camera_;
+  const TargetsFile& targets_;
+  double min_roi_radius_px_;
+  std::vector<TrackedTarget> tracked_;  // one per TargetsFile::targets entry
+};
+
+}  // namespace tetrapulse::localizer_internal
