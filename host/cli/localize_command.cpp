@@ -12,6 +12,7 @@
 #include "exit_codes.hpp"
 #include "vision_commands.hpp"
 #include "progress_bar.hpp"
+#include "ros2_output.hpp"
 #include "tetrapulse/localizer/frame_source.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
 #include "tetrapulse/localizer/pose_writer.hpp"
@@ -36,6 +37,7 @@ struct LocalizeArgs {
   std::string camera_info;
   std::string targets;
   bool quiet = false;
+  Ros2Args ros2;
 };
 
 int fail(int code, const std::string& message) {
@@ -104,6 +106,12 @@ int run_localize(const LocalizeArgs& a) {
   options.full_search_interval = a.full_search_interval;
   Localizer localizer(camera, targets, options);
 
+  std::optional<Ros2Output> ros2;
+  if (a.ros2.enabled) {
+    auto r = Ros2Output::open(a.ros2, camera, targets, live);
+    if (!r) return fail(kExitUsage, r.error());
+    ros2 = std::move(*r);
+  }
   const PoseFormat format = format_of(a.format);
   std::optional<PoseWriter> writer;
   if (!a.out.empty()) {
@@ -113,7 +121,12 @@ int run_localize(const LocalizeArgs& a) {
   }
   const bool print = live && a.out != "-";  // a live camera prints poses as they come
   ProgressBar progress(source->count(), !a.quiet && !live);
+  auto frame_began = std::chrono::steady_clock::now();
   const auto on_frame = [&](const Frame& f, const std::vector<TargetPose>& poses) -> DatasetResult<void> {
+    if (ros2) {
+      const auto took = std::chrono::steady_clock::now() - frame_began;
+      ros2->frame(f, poses, std::chrono::duration_cast<std::chrono::nanoseconds>(took).count(), localizer);
+    }
     for (const TargetPose& p : poses) {
       if (writer) {
         if (auto r = writer->write(f.frame, p); !r) return r;
@@ -124,6 +137,7 @@ int run_localize(const LocalizeArgs& a) {
       }
     }
     progress.advance();
+    frame_began = std::chrono::steady_clock::now();
     return {};
   };
   auto frames = localize_frames(*source, localizer, on_frame);
@@ -138,8 +152,9 @@ int run_localize(const LocalizeArgs& a) {
     std::fprintf(stderr, "tetrapulse localize: %zu frames, %zu poses%s%s\n", *frames, rows,
                  a.out.empty() ? "" : " written to ", a.out.c_str());
   }
+  const bool published = !ros2 || ros2->finish(localizer, a.quiet);
   if (*frames > 0 && rows == 0 && writer) return fail(kExitFailure, "no target was identified in any frame");
-  return kExitOk;
+  return published ? kExitOk : kExitPublishFailed;
 }
 
 }  // namespace
@@ -177,6 +192,7 @@ void add_localize_command(CLI::App& app, int* result) {
   cmd->add_option("--camera-info", args->camera_info, "camera.yaml to use (default: DATASET/camera.yaml)");
   cmd->add_option("--targets", args->targets, "targets.yaml to use (default: DATASET/targets.yaml)");
   cmd->add_flag("--quiet", args->quiet, "No progress bar or summary");
+  add_ros2_options(cmd, &args->ros2);
   cmd->footer("Dataset format and poses.csv: spec/rig-dataset.md.");
   cmd->callback([args, result] { *result = run_localize(*args); });
 }

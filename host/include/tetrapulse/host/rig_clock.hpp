@@ -40,6 +40,9 @@ class RigClock {
   int64_t from_monotonic(int64_t monotonic_ns) const { return monotonic_ns + offset_ns_; }
   int64_t to_monotonic(int64_t rig_ns) const { return rig_ns - offset_ns_; }
   int64_t from_realtime(int64_t realtime_ns) const { return from_monotonic(monotonic_from_realtime_ns(realtime_ns)); }
+  // A rig time on CLOCK_REALTIME, the clock ROS 2 nodes stamp messages with (through
+  // the REALTIME - MONOTONIC difference now: for times within seconds of now).
+  int64_t to_realtime(int64_t rig_ns) const { return to_monotonic(rig_ns) + realtime_minus_monotonic_ns(); }
 
  private:
   int64_t offset_ns_;
