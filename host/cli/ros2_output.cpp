@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "tetrapulse/host/rig_clock.hpp"
+#include "tetrapulse/ros2/background_publisher.hpp"
 #include "tetrapulse/ros2/dds_pose_publisher.hpp"
 #include "tetrapulse/ros2/ros_names.hpp"
 
@@ -13,6 +14,7 @@ namespace {
 constexpr int64_t kStatusPeriodNs = 1'000'000'000;  // rig time between two statuses
 constexpr int64_t kDiscoverySettleNs = 100'000'000;  // no new reader for this long: discovery is done
 constexpr int64_t kNsPerMs = 1'000'000;
+constexpr size_t kQueueFrames = 256;  // 2.5 s at 100 fps
 
 }  // namespace
 
@@ -74,7 +76,9 @@ tl::expected<Ros2Output, std::string> Ros2Output::open(const Ros2Args& args, con
     out.fail(publisher.error().message);
     return out;
   }
-  out.state_->publisher = std::move(*publisher);
+  // A replay waits for room in the queue (loses nothing); a live camera never waits.
+  out.state_->publisher = ros2::publish_in_background(std::move(*publisher), kQueueFrames,
+                                                      live ? ros2::WhenQueueFull::kDropOldest : ros2::WhenQueueFull::kWait);
   if (!live) out.state_->publisher->wait_for_readers(out.state_->wait_ns, kDiscoverySettleNs);
   return out;
 }
@@ -138,9 +142,11 @@ bool Ros2Output::finish(const Localizer& localizer, bool quiet) {
   }
   if (s.publisher && !quiet) {
     const ros2::PublishCounters c = s.publisher->counters();
-    std::fprintf(stderr, "tetrapulse localize: --ros2: %llu transforms on /tf, %llu poses, %llu statuses published\n",
+    std::fprintf(stderr,
+                 "tetrapulse localize: --ros2: %llu transforms on /tf, %llu poses, %llu statuses published%s\n",
                  static_cast<unsigned long long>(c.transforms), static_cast<unsigned long long>(c.poses),
-                 static_cast<unsigned long long>(c.statuses));
+                 static_cast<unsigned long long>(c.statuses),
+                 c.dropped == 0 ? "" : (", " + std::to_string(c.dropped) + " dropped (queue full)").c_str());
   }
   s.publisher.reset();
   return !s.failed;

@@ -19,6 +19,7 @@ struct PublishCounters {
   uint64_t transforms = 0; // TransformStamped written on /tf
   uint64_t poses = 0;      // PoseWithCovarianceStamped written
   uint64_t statuses = 0;   // DiagnosticArray written
+  uint64_t dropped = 0;    // frames and statuses never written (a full background queue, live)
 };
 
 class PosePublisher {

@@ -1,5 +1,5 @@
 #pragma once
-// Programs a test starts beside itself (inside the same network namespace): their
+// Programs a test or benchmark starts beside itself (inside the same network namespace): their
 // standard output read line by line and their end waited for, each with a bound,
 // on events (poll on a pipe and on a pidfd), never on sleeps.
 #include <string>
