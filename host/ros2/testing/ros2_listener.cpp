@@ -11,7 +11,8 @@
 // "samples N matched M incompatible_qos K lost L". It ends when --count samples
 // came, when --writers writers have matched and all have gone again, or after
 // --timeout-ms (exit 4); with --until-incompatible, as soon as a writer whose QoS
-// does not match its reader's was seen. Runs only inside tests/netns/isolated.
+// does not match its reader's was seen. --count-only takes samples without
+// formatting them (for the benchmark). Runs only inside tests/netns/isolated.
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
@@ -46,13 +47,14 @@ struct Args {
   long writers = 1;      // end once this many writers matched and all went
   long timeout_ms = 60000;
   bool until_incompatible = false;  // end once a writer with incompatible QoS was seen
+  bool count_only = false;          // take and count, format nothing (a reader as light as can be)
 };
 
 int usage() {
   std::fprintf(stderr,
                "usage: tetrapulse_ros2_listener tf|pose|status|discovery|publications --out FILE [--topic DDS_TOPIC]\n"
                "       [--best-effort] [--transient-local] [--depth N] [--count N] [--writers N] [--timeout-ms N]\n"
-               "       [--until-incompatible]\n");
+               "       [--until-incompatible] [--count-only]\n");
   return 2;
 }
 
@@ -143,6 +145,7 @@ long drain(const Args& a, dds_entity_t reader, std::string* out, long* n) {
     for (int i = 0; i < k; ++i) {
       if (!infos[i].valid_data) continue;
       ++taken;
+      if (a.count_only) continue;
       if (a.kind == "tf") write_tf(*static_cast<tf2_msgs_msg_dds__TFMessage_*>(samples[i]), out, n);
       if (a.kind == "pose") write_pose(*static_cast<geometry_msgs_msg_dds__PoseWithCovarianceStamped_*>(samples[i]), out, n);
       if (a.kind == "status") write_status(*static_cast<diagnostic_msgs_msg_dds__DiagnosticArray_*>(samples[i]), out, n);
@@ -264,6 +267,8 @@ int main(int argc, char** argv) {
     const bool has_value = i + 1 < argc;
     if (k == "--best-effort") {
       a.reliable = false;
+    } else if (k == "--count-only") {
+      a.count_only = true;
     } else if (k == "--until-incompatible") {
       a.until_incompatible = true;
     } else if (k == "--transient-local") {
