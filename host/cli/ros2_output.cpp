@@ -25,6 +25,7 @@ struct Ros2Output::State {
   int64_t wait_ns = 0;
   ros2::LocalizerStatus status;
   ros2::DurationStats processing;
+  std::optional<ros2::DurationStats> latency;  // live: mid-exposure to publish
   std::optional<int64_t> last_frame;
   std::optional<int64_t> next_status_ns;
 };
@@ -71,6 +72,7 @@ tl::expected<Ros2Output, std::string> Ros2Output::open(const Ros2Args& args, con
   out.state_ = std::make_unique<State>();
   out.state_->targets = &targets;
   out.state_->wait_ns = int64_t(args.wait_ms) * kNsPerMs;
+  if (live) out.state_->latency.emplace();
   auto publisher = ros2::open_dds_publisher(options);
   if (!publisher) {
     out.fail(publisher.error().message);
@@ -102,6 +104,8 @@ void Ros2Output::frame(const Frame& frame, const std::vector<TargetPose>& poses,
   s.processing.add(processing_ns);
   if (!s.publisher) return;
   if (auto r = s.publisher->publish(poses); !r) return fail(r.error().message);
+  // The live camera's rig time is this host's CLOCK_MONOTONIC.
+  if (s.latency) s.latency->add(host::monotonic_now_ns() - s.status.rig_time_ns);
   if (!s.next_status_ns) s.next_status_ns = s.status.rig_time_ns + kStatusPeriodNs;
   if (s.status.rig_time_ns >= *s.next_status_ns) {
     publish_status(localizer);
@@ -130,6 +134,8 @@ void Ros2Output::publish_status(const Localizer& localizer) {
   }
   s.status.processing = s.processing;
   s.processing = {};
+  s.status.latency = s.latency;
+  if (s.latency) s.latency = ros2::DurationStats{};
   if (auto r = s.publisher->publish_status(s.status); !r) fail(r.error().message);
 }
 
