@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "board_boot.hpp"
-#include "tetrapulse/fw/can_link.hpp"
-#include "tetrapulse/fw/dfu_device.hpp"
-#include "tetrapulse/fw/firmware.hpp"
-#include "tetrapulse/fw/usb_link.hpp"
-#include "tetrapulse/fw/usb_message_function.hpp"
+#include "tetrapulse/fw/app/firmware.hpp"
+#include "tetrapulse/fw/links/can_link.hpp"
+#include "tetrapulse/fw/links/usb_link.hpp"
+#include "tetrapulse/fw/usb/dfu_device.hpp"
+#include "tetrapulse/fw/usb/usb_message_function.hpp"
 #include "tetrapulse/linux_board/ffs_function.hpp"
 #include "tetrapulse/linux_board/gpio_leds.hpp"
 #include "tetrapulse/linux_board/gpio_sync_input.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 // The two things a boot can run, after boot selection (linux_board.cpp).
-#include "tetrapulse/fw/boot_slot.hpp"
+#include "tetrapulse/fw/boot/boot_slot.hpp"
 #include "tetrapulse/linux_board/file_flash.hpp"
 #include "tetrapulse/linux_board/linux_board.hpp"
 #include "tetrapulse/protocol/usb_descriptors.hpp"

@@ -8,10 +8,10 @@
 #include <array>
 
 #include "board_boot.hpp"
-#include "tetrapulse/fw/dfu_device.hpp"
-#include "tetrapulse/fw/image_bundle_writer.hpp"
-#include "tetrapulse/fw/record_store.hpp"
-#include "tetrapulse/fw/update_slot.hpp"
+#include "tetrapulse/fw/boot/image_bundle_writer.hpp"
+#include "tetrapulse/fw/boot/update_slot.hpp"
+#include "tetrapulse/fw/storage/record_store.hpp"
+#include "tetrapulse/fw/usb/dfu_device.hpp"
 #include "tetrapulse/linux_board/ffs_function.hpp"
 #include "tetrapulse/linux_board/monotonic_clock.hpp"
 #include "tetrapulse/linux_board/usb_gadget.hpp"

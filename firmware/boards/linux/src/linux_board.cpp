@@ -5,10 +5,10 @@
 #include <iterator>
 
 #include "board_boot.hpp"
+#include "tetrapulse/fw/boot/boot_state.hpp"
+#include "tetrapulse/fw/storage/config_store.hpp"
+#include "tetrapulse/fw/storage/record_store.hpp"
 #include "tetrapulse/linux_board/monotonic_clock.hpp"
-#include "tetrapulse/fw/boot_state.hpp"
-#include "tetrapulse/fw/config_store.hpp"
-#include "tetrapulse/fw/record_store.hpp"
 #include "tetrapulse/protocol/image_header.hpp"
 #include "tetrapulse/protocol/version.hpp"
 

@@ -13,7 +13,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "tetrapulse/fw/board_state.hpp"
+#include "tetrapulse/fw/app/board_state.hpp"
 
 namespace tetrapulse::linux_board {
 

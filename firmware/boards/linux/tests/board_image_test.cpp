@@ -5,11 +5,11 @@
 
 #include <filesystem>
 
-#include "tetrapulse/fw/boot_slot.hpp"
-#include "tetrapulse/fw/boot_state.hpp"
-#include "tetrapulse/fw/image_bundle_writer.hpp"
-#include "tetrapulse/fw/record_store.hpp"
-#include "tetrapulse/fw/update_slot.hpp"
+#include "tetrapulse/fw/boot/boot_slot.hpp"
+#include "tetrapulse/fw/boot/boot_state.hpp"
+#include "tetrapulse/fw/boot/image_bundle_writer.hpp"
+#include "tetrapulse/fw/boot/update_slot.hpp"
+#include "tetrapulse/fw/storage/record_store.hpp"
 #include "tetrapulse/linux_board/ffs_function.hpp"
 #include "tetrapulse/linux_board/file_flash.hpp"
 #include "tetrapulse/linux_board/linux_system.hpp"

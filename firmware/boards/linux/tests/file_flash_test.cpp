@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "tetrapulse/fw/config_store.hpp"
-#include "tetrapulse/fw/record_store.hpp"
+#include "tetrapulse/fw/storage/config_store.hpp"
+#include "tetrapulse/fw/storage/record_store.hpp"
 
 namespace tetrapulse::linux_board {
 namespace {

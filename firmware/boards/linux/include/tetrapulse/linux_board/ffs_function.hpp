@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "tetrapulse/fw/usb_function.hpp"
-#include "tetrapulse/fw/usb_link.hpp"
+#include "tetrapulse/fw/links/usb_link.hpp"
+#include "tetrapulse/fw/usb/usb_function.hpp"
 #include "tetrapulse/protocol/usb_descriptors.hpp"
 
 namespace tetrapulse::linux_board {

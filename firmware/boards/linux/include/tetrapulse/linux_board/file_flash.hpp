@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "tetrapulse/fw/flash.hpp"
-#include "tetrapulse/fw/flash_layout.hpp"
+#include "tetrapulse/fw/storage/flash.hpp"
+#include "tetrapulse/fw/storage/flash_layout.hpp"
 
 namespace tetrapulse::linux_board {
 

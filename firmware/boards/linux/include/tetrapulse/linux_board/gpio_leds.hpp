@@ -14,8 +14,8 @@
 
 #include <gpiod.hpp>
 
-#include "tetrapulse/fw/led_driver.hpp"
-#include "tetrapulse/fw/local_clock.hpp"
+#include "tetrapulse/fw/clock/local_clock.hpp"
+#include "tetrapulse/fw/leds/led_driver.hpp"
 
 namespace tetrapulse::linux_board {
 

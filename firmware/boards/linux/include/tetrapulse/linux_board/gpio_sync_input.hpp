@@ -8,8 +8,8 @@
 
 #include <gpiod.hpp>
 
-#include "tetrapulse/fw/sync_input.hpp"
-#include "tetrapulse/fw/tick.hpp"
+#include "tetrapulse/fw/clock/tick.hpp"
+#include "tetrapulse/fw/sync/sync_input.hpp"
 #include "tetrapulse/linux_board/monotonic_clock.hpp"
 
 namespace tetrapulse::linux_board {

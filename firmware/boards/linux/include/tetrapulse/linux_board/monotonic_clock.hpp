@@ -9,7 +9,7 @@
 // against rig time can be measured directly (to_monotonic()).
 #include <cstdint>
 
-#include "tetrapulse/fw/local_clock.hpp"
+#include "tetrapulse/fw/clock/local_clock.hpp"
 
 namespace tetrapulse::linux_board {
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "tetrapulse/fw/can_link.hpp"
+#include "tetrapulse/fw/links/can_link.hpp"
 #include "tetrapulse/linux_board/monotonic_clock.hpp"
 
 namespace tetrapulse::linux_board {
