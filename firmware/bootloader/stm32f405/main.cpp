@@ -14,14 +14,13 @@
 //            GetStatus, Reboot (SPEC.md §7.3), at the node id of the stored configuration.
 // QEMU models neither the OTG core nor bxCAN: under the emulator this mode runs without
 // either (the QEMU test only exercises the boot path).
-#include <array>
 #include <cstdint>
 
 #include "tetrapulse/fw/boot/boot_slot.hpp"
 #include "tetrapulse/fw/boot/bootloader_command_handler.hpp"
 #include "tetrapulse/fw/boot/image_bundle_writer.hpp"
+#include "tetrapulse/fw/boot/slot_survey.hpp"
 #include "tetrapulse/fw/boot/update_receiver.hpp"
-#include "tetrapulse/fw/boot/update_slot.hpp"
 #include "tetrapulse/fw/links/can_link.hpp"
 #include "tetrapulse/fw/storage/config_store.hpp"
 #include "tetrapulse/fw/storage/record_store.hpp"
@@ -82,15 +81,9 @@ uint32_t now_ms(const LocalTimer& clock) { return static_cast<uint32_t>(clock.re
   const bool real_chip = clocks.source != ClockSource::kUnreadable;
 
   static fw::RecordStore store(flash, layout.record_sectors);
-  (void)store.open();  // unreadable: empty; the update still works
-  std::array<fw::SlotCheck, fw::kSlotCount> checks{};
-  for (uint8_t s = 0; s < fw::kSlotCount; ++s) {
-    const tp::Result<tp::ImageHeader> h = fw::check_slot_image(flash, layout.slots[s], board, layout.vector_alignment);
-    checks[s] = fw::SlotCheck{h.ok(), h ? h->fw_version : 0};
-  }
-  const tp::Result<fw::BootState> stored = fw::load_boot_state(store);
-  const uint8_t target = fw::update_target_slot(stored, checks);
-  const uint8_t fallback = fw::known_good_slot(stored, checks);
+  const fw::SlotSurvey survey = fw::survey_slots(store, flash, layout, board);
+  const uint8_t target = survey.update_target();
+  const uint8_t fallback = survey.known_good();
 
   // CAN: the core's update receiver writes `target` (it writes the slot that is not "active").
   const bool can_up = bx_can().start(clocks.apb1_hz, BxCan::kDefaultBitrate, clock);

@@ -9,7 +9,7 @@
 
 #include "board_boot.hpp"
 #include "tetrapulse/fw/boot/image_bundle_writer.hpp"
-#include "tetrapulse/fw/boot/update_slot.hpp"
+#include "tetrapulse/fw/boot/slot_survey.hpp"
 #include "tetrapulse/fw/storage/record_store.hpp"
 #include "tetrapulse/fw/usb/dfu_device.hpp"
 #include "tetrapulse/linux_board/ffs_function.hpp"
@@ -45,16 +45,9 @@ BoardExit run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
   const fw::FlashLayout layout = linux_flash_layout();
   const fw::BoardModel model{tp::HwModel::kLinuxBoard, LinuxSystem::kHwRevision};
   fw::RecordStore store(flash, layout.record_sectors);
-  static_cast<void>(store.open());  // unreadable reads as empty: the boot state is then "none"
-  std::array<fw::SlotCheck, fw::kSlotCount> checks{};
-  for (uint8_t s = 0; s < fw::kSlotCount; ++s) {
-    const tp::Result<tp::ImageHeader> h = fw::check_slot_image(flash, layout.slots[s], model, layout.vector_alignment);
-    checks[s].valid = h.ok();
-    if (h) checks[s].fw_version = h->fw_version;
-  }
-  const tp::Result<fw::BootState> state = fw::load_boot_state(store);
-  const uint8_t good = fw::known_good_slot(state, checks);
-  const uint8_t target = fw::update_target_slot(state, checks);
+  const fw::SlotSurvey survey = fw::survey_slots(store, flash, layout, model);
+  const uint8_t good = survey.known_good();
+  const uint8_t target = survey.update_target();
 
   if (o.usb_gadget.empty()) {
     if (good != fw::kNoSlot) {

@@ -1,23 +1,15 @@
 #include "tetrapulse/fw/boot/boot_slot.hpp"
 
+#include "tetrapulse/fw/boot/slot_survey.hpp"
 #include "tetrapulse/fw/storage/record_store.hpp"
 
 namespace tetrapulse::fw {
 
 BootChoice choose_boot_slot(Flash& flash, const FlashLayout& layout, const BoardModel& board, bool stay) {
   RecordStore store(flash, layout.record_sectors);
-  store.open();  // unreadable: empty, and select_boot treats it as a factory-fresh board
-  std::array<SlotCheck, kSlotCount> checks{};
-  std::array<protocol::ImageHeader, kSlotCount> headers{};
-  for (uint8_t s = 0; s < kSlotCount; ++s) {
-    const protocol::Result<protocol::ImageHeader> h = check_slot_image(flash, layout.slots[s], board, layout.vector_alignment);
-    if (h) {
-      checks[s] = SlotCheck{true, h->fw_version};
-      headers[s] = *h;
-    }
-  }
-  const protocol::Result<BootState> stored = load_boot_state(store);
-  BootDecision d = select_boot(stored, checks, stay);
+  const SlotSurvey survey = survey_slots(store, flash, layout, board);
+  const protocol::Result<BootState>& stored = survey.stored;
+  BootDecision d = select_boot(stored, survey.checks, stay);
   BootChoice choice;
   if (d.write_state) choice.state_written = save_boot_state(store, d.state).ok();
   if (!choice.state_written && d.boot && d.slot == d.state.pending_slot && stored) {
@@ -25,11 +17,11 @@ BootChoice choose_boot_slot(Flash& flash, const FlashLayout& layout, const Board
     // image instead.
     BootState without_trial = *stored;
     without_trial.pending_slot = kNoSlot;
-    d = select_boot(without_trial, checks, stay);
+    d = select_boot(without_trial, survey.checks, stay);
   }
   choice.boot = d.boot;
   choice.slot = d.slot;
-  if (d.boot) choice.header = headers[d.slot];
+  if (d.boot) choice.header = survey.headers[d.slot];
   return choice;
 }
 

@@ -12,6 +12,7 @@
 #include "dfu_util_model.hpp"
 #include "tetrapulse/fw/boot/boot_slot.hpp"
 #include "tetrapulse/fw/boot/image_bundle_writer.hpp"
+#include "tetrapulse/fw/boot/slot_survey.hpp"
 #include "tetrapulse/fw/boot/update_slot.hpp"
 #include "tetrapulse/fw/usb/dfu_device.hpp"
 #include "tetrapulse/protocol/crc.hpp"
@@ -255,6 +256,46 @@ TEST(UpdateSlot, MarkingPendingKeepsOrSetsTheConfirmedSlot) {
   EXPECT_EQ(load_boot_state(b.store)->pending_slot, kNoSlot);
 }
 
+// What a bootloader starts from: both slots' checks and headers, the stored state, and the
+// known-good and target slots that follow from them.
+TEST(SlotSurvey, SeesBothSlotsAndTheStoredStateAndNeverTargetsTheKnownGoodImage) {
+  Board b;
+  const uint32_t v1 = tp::pack_version(1, 0, 0);
+  const uint32_t v2 = tp::pack_version(2, 0, 0);
+  b.flash.load(kSlotBase[0], make_image({kSlotBase[0], v1, 2500}));
+  std::vector<uint8_t> newer = make_image({kSlotBase[1], v2, 2500});
+  b.flash.load(kSlotBase[1], newer);
+
+  SlotSurvey fresh = survey_slots(b.store, b.flash, layout(), kBoard);
+  EXPECT_EQ(fresh.stored.error(), tp::Error::kInvalidState) << "a factory-fresh board stores no boot state";
+  ASSERT_TRUE(fresh.checks[0].valid && fresh.checks[1].valid);
+  EXPECT_EQ(fresh.checks[0].fw_version, v1);
+  EXPECT_EQ(fresh.headers[1].fw_version, v2);
+  EXPECT_EQ(fresh.headers[1].load_address, kSlotBase[1]);
+  EXPECT_EQ(fresh.known_good(), 1) << "with no state the newest valid image is the one to keep";
+  EXPECT_EQ(fresh.update_target(), 0);
+
+  BootState state;
+  state.confirmed_slot = 0;
+  ASSERT_TRUE(save_boot_state(b.store, state).ok());
+  const SlotSurvey confirmed = survey_slots(b.store, b.flash, layout(), kBoard);
+  ASSERT_TRUE(confirmed.stored.ok());
+  EXPECT_EQ(*confirmed.stored, state);
+  EXPECT_EQ(confirmed.known_good(), 0) << "the confirmed image, not the newer one";
+  EXPECT_EQ(confirmed.update_target(), 1);
+
+  newer.back() ^= 0x01;  // a payload byte: the CRC-32C check fails
+  Board corrupted;
+  corrupted.flash.load(kSlotBase[0], make_image({kSlotBase[0], v1, 2500}));
+  corrupted.flash.load(kSlotBase[1], newer);
+  const SlotSurvey one = survey_slots(corrupted.store, corrupted.flash, layout(), kBoard);
+  EXPECT_TRUE(one.checks[0].valid);
+  EXPECT_FALSE(one.checks[1].valid);
+  EXPECT_EQ(one.checks[1].fw_version, 0u);
+  EXPECT_EQ(one.known_good(), 0);
+  EXPECT_EQ(one.update_target(), 1);
+}
+
 // The bootloader path end to end: dfu-util sends the release bundle, the bootloader
 // installs the image for its inactive slot, and the next reset starts it on trial.
 class BootloaderDfu : public ::testing::TestWithParam<size_t> {};
@@ -267,15 +308,10 @@ TEST_P(BootloaderDfu, DfuUtilBundleBecomesTheNextBoot) {
   ASSERT_TRUE(b.store.open().ok());  // choose_boot_slot wrote through a store of its own
 
   // The bootloader, asked to stay, picks its target and enumerates.
-  std::array<SlotCheck, kSlotCount> checks{};
-  for (uint8_t s = 0; s < kSlotCount; ++s) {
-    const auto h = check_slot_image(b.flash, layout().slots[s], kBoard, 512);
-    checks[s] = SlotCheck{h.ok(), h ? h->fw_version : 0};
-  }
-  const tp::Result<BootState> stored = load_boot_state(b.store);
-  const uint8_t target = update_target_slot(stored, checks);
+  const SlotSurvey survey = survey_slots(b.store, b.flash, layout(), kBoard);
+  const uint8_t target = survey.update_target();
   ASSERT_EQ(target, 1);
-  ImageBundleWriter writer(b.flash, layout(), b.store, kBoard, target, known_good_slot(stored, checks));
+  ImageBundleWriter writer(b.flash, layout(), b.store, kBoard, target, survey.known_good());
   tp::UsbDeviceParams params;
   params.mode = tp::UsbMode::kBootloader;
   params.dfu_transfer_size = static_cast<uint16_t>(GetParam());

@@ -1,7 +1,7 @@
 #pragma once
 // The whole choice a bootloader makes at reset, shared by every board's bootloader:
-// open the record store, check both slots (image_check.hpp), decide (select_boot),
-// store the new boot state, and say what to start.
+// survey the slots (slot_survey.hpp: record store, both slots' checks, the boot state),
+// decide (select_boot), store the new boot state, and say what to start.
 #include <cstdint>
 
 #include "tetrapulse/fw/boot/boot_state.hpp"
