@@ -7,8 +7,10 @@
 
 namespace tetrapulse::linux_board {
 
-BoardExit run_application(const LinuxBoardOptions& options, FileFlash& flash, const fw::BootChoice& choice);
-BoardExit run_dfu_mode(const LinuxBoardOptions& options, FileFlash& flash);
+// Each returns when the board resets, with the mode the reset asks for (run_board()).
+BoardResult<protocol::RebootMode> run_application(const LinuxBoardOptions& options, FileFlash& flash,
+                                                  const fw::BootChoice& choice);
+BoardResult<protocol::RebootMode> run_dfu_mode(const LinuxBoardOptions& options, FileFlash& flash);
 
 // The USB device parameters of this board in `mode` (bcdDevice from the version).
 protocol::UsbDeviceParams linux_usb_params(protocol::UsbMode mode, uint32_t fw_version);

@@ -17,19 +17,13 @@
 
 namespace tetrapulse::linux_board {
 
-std::unique_ptr<SocketCanBus> SocketCanBus::open(const std::string& interface_name, const MonotonicClock& clock,
-                                                 std::string* error) {
-  const std::string where = "CAN interface '" + interface_name + "': ";
+BoardResult<std::unique_ptr<SocketCanBus>> SocketCanBus::open(const std::string& interface_name,
+                                                              const MonotonicClock& clock) {
+  const std::string where = "CAN interface '" + interface_name + "'";
   const unsigned index = if_nametoindex(interface_name.c_str());
-  if (index == 0) {
-    *error = where + "no such interface";
-    return nullptr;
-  }
+  if (index == 0) return board_error(BoardErrorKind::kCan, where, "no such interface");
   const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
-  if (fd < 0) {
-    *error = where + "cannot open a raw CAN socket: " + std::strerror(errno);
-    return nullptr;
-  }
+  if (fd < 0) return board_error(BoardErrorKind::kCan, where, std::string("cannot open a raw CAN socket: ") + std::strerror(errno));
   const int on = 1;
   const can_err_mask_t errors = CAN_ERR_MASK;
   sockaddr_can address{};
@@ -38,9 +32,9 @@ std::unique_ptr<SocketCanBus> SocketCanBus::open(const std::string& interface_na
   if (::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof(on)) != 0 ||
       ::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &errors, sizeof(errors)) != 0 ||
       ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) {
-    *error = where + std::strerror(errno);
+    const int e = errno;
     ::close(fd);
-    return nullptr;
+    return board_error(BoardErrorKind::kCan, where, std::strerror(e));
   }
   return std::unique_ptr<SocketCanBus>(new SocketCanBus(fd, interface_name, clock));
 }

@@ -83,10 +83,9 @@ class LinuxUpdateTest : public ::testing::Test {
     path_ = (fs::temp_directory_path() / ("linux_board_update_" + std::to_string(::getpid()) + "_" +
                                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".bin"))
                 .string();
-    bool created = false;
-    std::string error;
-    flash_ = FileFlash::open(path_, linux_flash_sectors(), &created, &error);
-    ASSERT_TRUE(flash_) << error;
+    BoardResult<std::unique_ptr<FileFlash>> opened = FileFlash::open(path_, linux_flash_sectors());
+    ASSERT_TRUE(opened) << opened.error().what();
+    flash_ = std::move(*opened);
     const std::vector<uint8_t> factory = make_linux_image(tp::pack_version(1, 0, 0), seeded_payload(3000, 1));
     ASSERT_TRUE(flash_->load(layout_.slots[0].region.address, tp::ByteView{factory.data(), factory.size()}));
     store_.emplace(*flash_, layout_.record_sectors);
