@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "tetrapulse/fw/app/board_state.hpp"
+#include "tetrapulse/protocol/clock_bracket.hpp"
 
 namespace tetrapulse::linux_board {
 
@@ -99,7 +100,10 @@ std::optional<ReceivedCanFrame> SocketCanBus::receive() {
       if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
         timespec t{};
         std::memcpy(&t, CMSG_DATA(c), sizeof(t));
-        monotonic = monotonic_from_realtime_ns(static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec);
+        // On CLOCK_MONOTONIC through the current difference of the two clocks: a stamp is
+        // converted microseconds after it was taken, so an NTP step in between is not worth a guard.
+        const int64_t realtime = static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+        monotonic = realtime - protocol::clock_offset_ns(monotonic_ns, realtime_ns);
       }
     }
     ReceivedCanFrame r;
