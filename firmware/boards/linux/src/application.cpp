@@ -95,14 +95,8 @@ BoardResult<tp::RebootMode> run_application(const LinuxBoardOptions& o, FileFlas
   std::optional<fw::DfuDevice> dfu;
   const tp::UsbDeviceParams params = linux_usb_params(tp::UsbMode::kApplication, choice.header.fw_version);
   if (!o.usb_gadget.empty()) {
-    const UsbGadgetSpec spec{o.usb_gadget, o.usb_mount, tp::UsbMode::kApplication, params.bcd_device,
-                             serial_text(o.serial), o.usb_udc};
-    if (BoardResult<void> made = gadget.create(spec); !made) return tl::unexpected(made.error());
-    BoardResult<std::unique_ptr<FfsFunction>> opened = FfsFunction::open(o.usb_mount, params, serial_text(o.serial));
-    if (!opened) {
-      gadget.remove();
-      return tl::unexpected(opened.error());
-    }
+    BoardResult<std::unique_ptr<FfsFunction>> opened = open_usb_function(gadget, o, params);
+    if (!opened) return tl::unexpected(opened.error());
     usb = std::move(*opened);
     usb_link.emplace(*usb);
     messages.emplace(*usb_link, firmware, clock,

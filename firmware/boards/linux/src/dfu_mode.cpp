@@ -63,14 +63,8 @@ BoardResult<tp::RebootMode> run_dfu_mode(const LinuxBoardOptions& o, FileFlash& 
   fw::DfuDevice dfu(writer, params, block.data(), block.size());
 
   UsbGadget gadget;
-  const UsbGadgetSpec spec{o.usb_gadget, o.usb_mount, tp::UsbMode::kBootloader, params.bcd_device,
-                           serial_text(o.serial), o.usb_udc};
-  if (BoardResult<void> made = gadget.create(spec); !made) return tl::unexpected(made.error());
-  BoardResult<std::unique_ptr<FfsFunction>> opened = FfsFunction::open(o.usb_mount, params, serial_text(o.serial));
-  if (!opened) {
-    gadget.remove();
-    return tl::unexpected(opened.error());
-  }
+  BoardResult<std::unique_ptr<FfsFunction>> opened = open_usb_function(gadget, o, params);
+  if (!opened) return tl::unexpected(opened.error());
   FfsFunction& usb = **opened;
   usb.set_function(0, dfu);
   if (BoardResult<void> bound = gadget.bind(); !bound) return tl::unexpected(bound.error());

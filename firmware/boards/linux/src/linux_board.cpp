@@ -69,6 +69,15 @@ tp::UsbDeviceParams linux_usb_params(tp::UsbMode mode, uint32_t fw_version) {
   return p;
 }
 
+BoardResult<std::unique_ptr<FfsFunction>> open_usb_function(UsbGadget& gadget, const LinuxBoardOptions& o,
+                                                             const tp::UsbDeviceParams& params) {
+  const UsbGadgetSpec spec{o.usb_gadget, o.usb_mount, params.mode, params.bcd_device, serial_text(o.serial), o.usb_udc};
+  if (BoardResult<void> made = gadget.create(spec); !made) return tl::unexpected(made.error());
+  BoardResult<std::unique_ptr<FfsFunction>> usb = FfsFunction::open(o.usb_mount, params, serial_text(o.serial));
+  if (!usb) gadget.remove();
+  return usb;
+}
+
 BoardResult<tp::RebootMode> run_board(const LinuxBoardOptions& o) {
   BoardResult<std::unique_ptr<FileFlash>> opened = FileFlash::open(o.flash_path, linux_flash_sectors());
   if (!opened) return tl::unexpected(opened.error());
