@@ -1,5 +1,5 @@
 #pragma once
-// The two things a boot can run, after boot selection (linux_board.cpp).
+// The two things a boot can run after boot selection (linux_board.cpp), and what both use.
 #include <memory>
 
 #include "tetrapulse/fw/boot/boot_slot.hpp"
