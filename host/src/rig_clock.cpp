@@ -20,7 +20,9 @@ int64_t read_clock(clockid_t id) {
 int64_t monotonic_now_ns() { return read_clock(CLOCK_MONOTONIC); }
 int64_t realtime_now_ns() { return read_clock(CLOCK_REALTIME); }
 
-int64_t realtime_minus_monotonic_ns() { return protocol::clock_offset_ns(monotonic_now_ns, realtime_now_ns); }
+int64_t realtime_minus_monotonic_ns() {
+  return protocol::bracketed_clock_offset_ns(monotonic_now_ns, realtime_now_ns);
+}
 
 int64_t monotonic_from_realtime_ns(int64_t realtime_ns) { return realtime_ns - realtime_minus_monotonic_ns(); }
 

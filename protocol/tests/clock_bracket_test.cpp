@@ -13,7 +13,7 @@
 namespace tetrapulse::protocol {
 namespace {
 
-// Reads that return a script, reference and other interleaved as clock_offset_ns() asks.
+// Reads that return a script, reference and other interleaved as bracketed_clock_offset_ns() asks.
 struct ScriptedReads {
   std::vector<int64_t> reference;
   std::vector<int64_t> other;
@@ -21,7 +21,8 @@ struct ScriptedReads {
   size_t next_other = 0;
 
   int64_t offset() {
-    return clock_offset_ns([this] { return reference.at(next_reference++); }, [this] { return other.at(next_other++); });
+    return bracketed_clock_offset_ns([this] { return reference.at(next_reference++); },
+                                     [this] { return other.at(next_other++); });
   }
 };
 
@@ -58,7 +59,7 @@ TEST(ClockBracket, ErrorStaysWithinHalfTheTightestBracketWhateverThePreemptions)
       return at;
     };
     std::vector<int64_t> reference_reads;
-    const int64_t got = clock_offset_ns(
+    const int64_t got = bracketed_clock_offset_ns(
         [&] {
           reference_reads.push_back(instant());
           return reference_reads.back();

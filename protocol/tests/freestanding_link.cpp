@@ -80,7 +80,7 @@ int64_t read_clock() {
   return g_clock;
 }
 
-void clocks() { g_sink = static_cast<uint8_t>(clock_offset_ns(read_clock, [] { return g_clock * 2; })); }
+void clocks() { g_sink = static_cast<uint8_t>(bracketed_clock_offset_ns(read_clock, [] { return g_clock * 2; })); }
 }  // namespace
 
 int main() {

@@ -168,8 +168,8 @@ BoardResult<std::unique_ptr<FfsFunction>> FfsFunction::open(const std::string& m
   if (f->ep0_ < 0) return failed(ep0, std::strerror(errno));
   const FfsBlobs blobs = ffs_blobs(params, serial);
   if (!write_all(f->ep0_, blobs.descriptors.data(), blobs.descriptors.size())) {
-    return failed(ep0, std::string("the kernel refused the descriptors: ") + std::strerror(errno) +
-                           (params.dfu_functional_descriptor ? " (a kernel before 6.x refuses the DFU functional descriptor)" : ""));
+    const char* hint = params.dfu_functional_descriptor ? " (a kernel before 6.x refuses the DFU functional descriptor)" : "";
+    return failed(ep0, std::string("the kernel refused the descriptors: ") + std::strerror(errno) + hint);
   }
   if (!write_all(f->ep0_, blobs.strings.data(), blobs.strings.size())) {
     return failed(ep0, std::string("the kernel refused the strings: ") + std::strerror(errno));

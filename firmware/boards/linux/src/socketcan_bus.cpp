@@ -24,7 +24,9 @@ BoardResult<std::unique_ptr<SocketCanBus>> SocketCanBus::open(const std::string&
   const unsigned index = if_nametoindex(interface_name.c_str());
   if (index == 0) return board_error(BoardErrorKind::kCan, where, "no such interface");
   const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
-  if (fd < 0) return board_error(BoardErrorKind::kCan, where, std::string("cannot open a raw CAN socket: ") + std::strerror(errno));
+  if (fd < 0) {
+    return board_error(BoardErrorKind::kCan, where, std::string("cannot open a raw CAN socket: ") + std::strerror(errno));
+  }
   const int on = 1;
   const can_err_mask_t errors = CAN_ERR_MASK;
   sockaddr_can address{};
@@ -103,7 +105,7 @@ std::optional<ReceivedCanFrame> SocketCanBus::receive() {
         // On CLOCK_MONOTONIC through the current difference of the two clocks: a stamp is
         // converted microseconds after it was taken, so an NTP step in between is not worth a guard.
         const int64_t realtime = static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-        monotonic = realtime - protocol::clock_offset_ns(monotonic_ns, realtime_ns);
+        monotonic = realtime - protocol::bracketed_clock_offset_ns(monotonic_ns, realtime_ns);
       }
     }
     ReceivedCanFrame r;

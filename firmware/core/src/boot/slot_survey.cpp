@@ -11,7 +11,8 @@ SlotSurvey survey_slots(RecordStore& store, const Flash& flash, const FlashLayou
   static_cast<void>(store.open());  // unreadable: empty
   SlotSurvey survey;
   for (uint8_t s = 0; s < kSlotCount; ++s) {
-    const protocol::Result<protocol::ImageHeader> h = check_slot_image(flash, layout.slots[s], board, layout.vector_alignment);
+    const protocol::Result<protocol::ImageHeader> h =
+        check_slot_image(flash, layout.slots[s], board, layout.vector_alignment);
     if (h) {
       survey.checks[s] = SlotCheck{true, h->fw_version};
       survey.headers[s] = *h;

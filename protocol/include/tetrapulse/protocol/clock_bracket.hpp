@@ -18,7 +18,7 @@ constexpr int kClockBrackets = 3;
 
 // O - R from kClockBrackets brackets; `reference` and `other` return R and O now (ns).
 template <typename ReadReference, typename ReadOther>
-int64_t clock_offset_ns(ReadReference&& reference, ReadOther&& other) {
+int64_t bracketed_clock_offset_ns(ReadReference&& reference, ReadOther&& other) {
   int64_t best_span = INT64_MAX;
   int64_t offset = 0;
   for (int i = 0; i < kClockBrackets; ++i) {
