@@ -63,7 +63,7 @@ HostResult<GpioLineAddress> parse_gpio_line(const std::string& text) {
 namespace {
 
 // A libgpiod 1.6 line on CLOCK_MONOTONIC.
-class LibgpiodLine : public GpioSyncLine {
+class LibgpiodLine final : public GpioSyncLine {
  public:
   LibgpiodLine(GpioLineAddress address, RigClock clock, bool active_low)
       : address_(std::move(address)), clock_(clock), active_low_(active_low) {}
@@ -94,13 +94,14 @@ class LibgpiodLine : public GpioSyncLine {
     return {};
   }
 
-  const std::string& name() const override { return name_; }
-  int64_t now() const override { return clock_.now(); }
-  bool sleep_until(int64_t rig_ns, const std::atomic<bool>& stop) override {
+ private:
+  const std::string& do_name() const override { return name_; }
+  int64_t do_now() const override { return clock_.now(); }
+  bool do_sleep_until(int64_t rig_ns, const std::atomic<bool>& stop) override {
     return sleep_until_monotonic(clock_.to_monotonic(rig_ns), stop);
   }
   // The time it took effect is taken as the middle of the set-value ioctl.
-  HostResult<int64_t> set(bool active) override {
+  HostResult<int64_t> do_set(bool active) override {
     try {
       const int64_t before = monotonic_now_ns();
       line_.set_value(active ? 1 : 0);
@@ -110,7 +111,7 @@ class LibgpiodLine : public GpioSyncLine {
       return tl::unexpected(gpio_error(address_.text(), e, "driving the line"));
     }
   }
-  HostResult<std::vector<Edge>> wait_edges(int64_t timeout_ns) override {
+  HostResult<std::vector<Edge>> do_wait_edges(int64_t timeout_ns) override {
     std::vector<Edge> edges;
     try {
       if (!line_.event_wait(std::chrono::nanoseconds(timeout_ns))) return edges;
@@ -124,7 +125,6 @@ class LibgpiodLine : public GpioSyncLine {
     return edges;
   }
 
- private:
   GpioLineAddress address_;
   std::string name_ = "gpio:" + address_.text();
   RigClock clock_;

@@ -15,7 +15,7 @@ void SimCanBus::set_time(int64_t rig_ns) {
   events_.clear();  // stamps nobody read (of multi-frame transfers) are stale by now
 }
 
-HostResult<uint32_t> SimCanBus::send(const protocol::CanFrame& frame) {
+HostResult<uint32_t> SimCanBus::do_send(const protocol::CanFrame& frame) {
   const auto id = protocol::unpack_can_id(frame.id & protocol::kCanExtendedIdMask);
   const bool sync = id.ok() && id->type == static_cast<uint8_t>(protocol::MessageType::kSync);
   for (Node& n : nodes_) {
@@ -31,7 +31,7 @@ HostResult<uint32_t> SimCanBus::send(const protocol::CanFrame& frame) {
   return stamp.tx_key;
 }
 
-HostResult<std::optional<CanPortEvent>> SimCanBus::next(int64_t /*timeout_ns*/) {
+HostResult<std::optional<CanPortEvent>> SimCanBus::do_next(int64_t /*timeout_ns*/) {
   if (events_.empty()) return std::optional<CanPortEvent>{};
   CanPortEvent e = events_.front();
   events_.pop_front();

@@ -31,14 +31,15 @@ int64_t monotonic_stamp(const timespec& t) {
   return real == 0 ? 0 : monotonic_from_realtime_ns(real);
 }
 
-class SocketCanPort : public CanPort {
+class SocketCanPort final : public CanPort {
  public:
   SocketCanPort(std::string name, int fd) : name_(std::move(name)), fd_(fd) {}
   ~SocketCanPort() override { ::close(fd_); }
 
-  const std::string& interface_name() const override { return name_; }
+ private:
+  const std::string& do_interface_name() const override { return name_; }
 
-  HostResult<uint32_t> send(const protocol::CanFrame& frame) override {
+  HostResult<uint32_t> do_send(const protocol::CanFrame& frame) override {
     can_frame f{};
     f.can_id = (frame.id & CAN_EFF_MASK) | CAN_EFF_FLAG;
     f.can_dlc = frame.size;
@@ -59,7 +60,7 @@ class SocketCanPort : public CanPort {
     }
   }
 
-  HostResult<std::optional<CanPortEvent>> next(int64_t timeout_ns) override {
+  HostResult<std::optional<CanPortEvent>> do_next(int64_t timeout_ns) override {
     const int64_t deadline = monotonic_now_ns() + timeout_ns;
     for (;;) {
       pollfd p{fd_, POLLIN | POLLERR, 0};
@@ -80,7 +81,6 @@ class SocketCanPort : public CanPort {
     }
   }
 
- private:
   // A transmit timestamp from the error queue, if that is what is there.
   std::optional<CanPortEvent> read_error_queue() {
     char control[512];

@@ -14,17 +14,19 @@ using protocol::DfuRequest;
 
 constexpr unsigned kControlTimeoutMs = 5000;
 
-class UsbDfuControl : public DfuControl {
+class UsbDfuControl final : public DfuControl {
  public:
   UsbDfuControl(std::string name, libusb_device_handle* handle, uint8_t interface_number)
       : name_(std::move(name)), handle_(handle), interface_(interface_number) {}
 
-  const std::string& name() const override { return name_; }
+  HostResult<void> detach(uint16_t timeout_ms) { return out(DfuRequest::kDetach, timeout_ms, nullptr, 0); }
 
-  HostResult<void> download(uint16_t block, protocol::ByteView data) override {
+ private:
+  const std::string& do_name() const override { return name_; }
+  HostResult<void> do_download(uint16_t block, protocol::ByteView data) override {
     return out(DfuRequest::kDownload, block, const_cast<uint8_t*>(data.data), static_cast<uint16_t>(data.size));
   }
-  HostResult<protocol::DfuStatus> get_status() override {
+  HostResult<protocol::DfuStatus> do_get_status() override {
     uint8_t answer[protocol::kDfuStatusSize];
     const int n = libusb_control_transfer(handle_, protocol::kDfuRequestTypeIn,
                                           static_cast<uint8_t>(DfuRequest::kGetStatus), 0, interface_, answer,
@@ -37,13 +39,10 @@ class UsbDfuControl : public DfuControl {
     }
     return *status;
   }
-  HostResult<void> clear_status() override { return out(DfuRequest::kClearStatus, 0, nullptr, 0); }
-  HostResult<void> abort() override { return out(DfuRequest::kAbort, 0, nullptr, 0); }
-  void wait_ms(uint32_t ms) override { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
+  HostResult<void> do_clear_status() override { return out(DfuRequest::kClearStatus, 0, nullptr, 0); }
+  HostResult<void> do_abort() override { return out(DfuRequest::kAbort, 0, nullptr, 0); }
+  void do_wait_ms(uint32_t ms) override { std::this_thread::sleep_for(std::chrono::milliseconds(ms)); }
 
-  HostResult<void> detach(uint16_t timeout_ms) { return out(DfuRequest::kDetach, timeout_ms, nullptr, 0); }
-
- private:
   HostResult<void> out(DfuRequest request, uint16_t value, uint8_t* data, uint16_t size) {
     const int n = libusb_control_transfer(handle_, protocol::kDfuRequestTypeOut, static_cast<uint8_t>(request), value,
                                           interface_, data, size, kControlTimeoutMs);

@@ -15,17 +15,18 @@ int milliseconds_up(int64_t ns) { return static_cast<int>(std::max<int64_t>(1, (
 
 // The bulk endpoints of a real board through libusb, reopened by serial number when the
 // board re-enumerates.
-class LibusbBulkPipe : public UsbBulkPipe {
+class LibusbBulkPipe final : public UsbBulkPipe {
  public:
   LibusbBulkPipe(std::string name, std::string serial, std::unique_ptr<usb::UsbBoardHandle> board,
                  UsbLinkOptions options)
       : name_(std::move(name)), serial_(std::move(serial)), board_(std::move(board)), options_(options) {}
 
-  std::optional<protocol::UsbProtocolInfo> protocol_info() const override {
+ private:
+  std::optional<protocol::UsbProtocolInfo> do_protocol_info() const override {
     return board_ ? board_->listing().protocol_info : std::nullopt;
   }
 
-  HostResult<void> write_transfer(protocol::ByteView transfer, int timeout_ms) override {
+  HostResult<void> do_write_transfer(protocol::ByteView transfer, int timeout_ms) override {
     for (int attempt = 0;; ++attempt) {
       if (auto ready = reconnect(static_cast<int>(options_.reconnect_timeout.count())); !ready) return ready;
       const UsbMessageInterface& m = *board_->layout().messages;
@@ -44,7 +45,7 @@ class LibusbBulkPipe : public UsbBulkPipe {
     }
   }
 
-  HostResult<std::optional<std::vector<uint8_t>>> read_transfer(int timeout_ms) override {
+  HostResult<std::optional<std::vector<uint8_t>>> do_read_transfer(int timeout_ms) override {
     if (auto ready = reconnect(timeout_ms); !ready) return tl::unexpected(ready.error());
     const UsbMessageInterface& m = *board_->layout().messages;
     // A whole number of packets no smaller than the largest transfer (SPEC.md §5.4).
@@ -74,7 +75,6 @@ class LibusbBulkPipe : public UsbBulkPipe {
     return host_error(HostErrorKind::kIo, name_, "bulk IN: " + usb::describe(r));
   }
 
- private:
   int bulk(uint8_t endpoint, uint8_t* data, int size, int timeout_ms) {
     int done = 0;
     const int r = libusb_bulk_transfer(board_->get(), endpoint, data, size, &done, static_cast<unsigned>(timeout_ms));

@@ -7,16 +7,25 @@
 
 namespace tetrapulse::host::testing {
 
-class FakeCanBus::Port : public CanPort {
+class FakeCanBus::Port final : public CanPort {
  public:
   Port(FakeCanBus* bus, SocketCanOptions options) : bus_(bus), options_(std::move(options)) {
     bus_->ports_.push_back(this);
   }
   ~Port() override { bus_->ports_.erase(std::find(bus_->ports_.begin(), bus_->ports_.end(), this)); }
 
-  const std::string& interface_name() const override { return bus_->name_; }
+  bool accepts(const protocol::CanFrame& frame) const {
+    if (options_.filters.empty()) return true;
+    return std::any_of(options_.filters.begin(), options_.filters.end(),
+                       [&](const protocol::CanFilter& f) { return protocol::can_filter_matches(f, frame.id); });
+  }
+  void push(CanPortEvent e) { events_.push_back(e); }
+  const SocketCanOptions& options() const { return options_; }
 
-  HostResult<uint32_t> send(const protocol::CanFrame& frame) override {
+ private:
+  const std::string& do_interface_name() const override { return bus_->name_; }
+
+  HostResult<uint32_t> do_send(const protocol::CanFrame& frame) override {
     const uint32_t key = key_++;
     bus_->transmit(this, frame);
     if (options_.tx_timestamps) {
@@ -29,7 +38,7 @@ class FakeCanBus::Port : public CanPort {
     return key;
   }
 
-  HostResult<std::optional<CanPortEvent>> next(int64_t timeout_ns) override {
+  HostResult<std::optional<CanPortEvent>> do_next(int64_t timeout_ns) override {
     if (events_.empty()) {
       // Nothing can arrive while a single-threaded test waits: wait out the timeout.
       std::this_thread::sleep_for(std::chrono::nanoseconds(timeout_ns));
@@ -40,15 +49,6 @@ class FakeCanBus::Port : public CanPort {
     return e;
   }
 
-  bool accepts(const protocol::CanFrame& frame) const {
-    if (options_.filters.empty()) return true;
-    return std::any_of(options_.filters.begin(), options_.filters.end(),
-                       [&](const protocol::CanFilter& f) { return protocol::can_filter_matches(f, frame.id); });
-  }
-  void push(CanPortEvent e) { events_.push_back(e); }
-  const SocketCanOptions& options() const { return options_; }
-
- private:
   FakeCanBus* bus_;
   SocketCanOptions options_;
   std::deque<CanPortEvent> events_;

@@ -24,15 +24,23 @@ struct ModelOptions {
   bool hang = false;  // busy forever
 };
 
-class DfuModel : public DfuControl {
+class DfuModel final : public DfuControl {
  public:
   explicit DfuModel(ModelOptions o) : o_(o), state_(o.start) {
     if (state_ == DfuState::kDfuError) status_ = DfuStatusCode::kErrUnknown;
   }
 
-  const std::string& name() const override { return name_; }
+  const Bytes& received() const { return received_; }
+  const std::vector<uint16_t>& blocks() const { return blocks_; }
+  const std::vector<std::string>& log() const { return log_; }
+  uint32_t stalls() const { return stalls_; }
+  uint64_t waited_ms() const { return waited_; }
+  DfuState state() const { return state_; }
 
-  HostResult<void> download(uint16_t block, protocol::ByteView data) override {
+ private:
+  const std::string& do_name() const override { return name_; }
+
+  HostResult<void> do_download(uint16_t block, protocol::ByteView data) override {
     log_.push_back(data.size == 0 ? "DNLOAD(0)" : "DNLOAD");
     if (!ready()) return stall();
     if (state_ == DfuState::kDfuIdle && data.size > 0) {
@@ -56,7 +64,7 @@ class DfuModel : public DfuControl {
     return {};
   }
 
-  HostResult<DfuStatus> get_status() override {
+  HostResult<DfuStatus> do_get_status() override {
     log_.push_back("GETSTATUS");
     if (!ready()) return stall();
     DfuStatus s;
@@ -92,7 +100,7 @@ class DfuModel : public DfuControl {
     return s;
   }
 
-  HostResult<void> clear_status() override {
+  HostResult<void> do_clear_status() override {
     log_.push_back("CLRSTATUS");
     if (!ready() || state_ != DfuState::kDfuError) return stall();
     state_ = DfuState::kDfuIdle;
@@ -100,7 +108,7 @@ class DfuModel : public DfuControl {
     return {};
   }
 
-  HostResult<void> abort() override {
+  HostResult<void> do_abort() override {
     log_.push_back("ABORT");
     if (!ready()) return stall();
     if (state_ == DfuState::kDfuIdle || state_ == DfuState::kDfuDownloadIdle || state_ == DfuState::kDfuManifestSync ||
@@ -111,19 +119,11 @@ class DfuModel : public DfuControl {
     return stall();
   }
 
-  void wait_ms(uint32_t ms) override {
+  void do_wait_ms(uint32_t ms) override {
     now_ += ms;
     waited_ += ms;
   }
 
-  const Bytes& received() const { return received_; }
-  const std::vector<uint16_t>& blocks() const { return blocks_; }
-  const std::vector<std::string>& log() const { return log_; }
-  uint32_t stalls() const { return stalls_; }
-  uint64_t waited_ms() const { return waited_; }
-  DfuState state() const { return state_; }
-
- private:
   // Leaves a busy state once its poll timeout has passed; false when the host came too early.
   bool ready() {
     if (state_ == DfuState::kDfuDownloadBusy || state_ == DfuState::kDfuManifest) {

@@ -140,7 +140,7 @@ TEST(ExposureLogWriter, WritesTheHeaderAndOneFlushedRowPerExposure) {
 
 // A GPIO line on a clock the test moves: sleeping jumps to the time asked for (plus a
 // scripted lateness), setting the line takes `set_ns`, and input edges come from a script.
-class ScriptedLine : public GpioSyncLine {
+class ScriptedLine final : public GpioSyncLine {
  public:
   int64_t clock = 0;
   int64_t set_ns = 3'000;                   // the set-value call takes this long
@@ -149,20 +149,21 @@ class ScriptedLine : public GpioSyncLine {
   int64_t late_at = -1;                     // one sleep that overshoots by `late_by`
   int64_t late_by = 0;
 
-  const std::string& name() const override { return name_; }
-  int64_t now() const override { return clock; }
-  bool sleep_until(int64_t t, const std::atomic<bool>& stop) override {
+ private:
+  const std::string& do_name() const override { return name_; }
+  int64_t do_now() const override { return clock; }
+  bool do_sleep_until(int64_t t, const std::atomic<bool>& stop) override {
     if (stop.load()) return false;
     if (t > clock) clock = t;
     if (t == late_at) clock += late_by;
     return true;
   }
-  HostResult<int64_t> set(bool active) override {
+  HostResult<int64_t> do_set(bool active) override {
     clock += set_ns;
     levels.emplace_back(clock - set_ns / 2, active);
     return clock - set_ns / 2;
   }
-  HostResult<std::vector<Edge>> wait_edges(int64_t timeout_ns) override {
+  HostResult<std::vector<Edge>> do_wait_edges(int64_t timeout_ns) override {
     std::vector<Edge> out;
     while (!input.empty() && input.front().rig_ns <= clock + timeout_ns) {
       out.push_back(input.front());
@@ -172,7 +173,6 @@ class ScriptedLine : public GpioSyncLine {
     return out;
   }
 
- private:
   std::string name_ = "gpio:scripted";
 };
 

@@ -16,13 +16,14 @@ namespace {
 
 using Bytes = std::vector<uint8_t>;
 
-class FakeBulkPipe : public UsbBulkPipe {
+class FakeBulkPipe final : public UsbBulkPipe {
  public:
   std::vector<Bytes> written;
   std::deque<Bytes> to_read;
   testing::BoardResponder* responder = nullptr;
 
-  HostResult<void> write_transfer(protocol::ByteView t, int) override {
+ private:
+  HostResult<void> do_write_transfer(protocol::ByteView t, int) override {
     written.emplace_back(t.begin(), t.end());
     if (responder != nullptr) {
       auto m = protocol::decode_usb_bulk_frame(t);
@@ -37,7 +38,7 @@ class FakeBulkPipe : public UsbBulkPipe {
     }
     return {};
   }
-  HostResult<std::optional<Bytes>> read_transfer(int) override {
+  HostResult<std::optional<Bytes>> do_read_transfer(int) override {
     if (to_read.empty()) return std::nullopt;
     Bytes t = to_read.front();
     to_read.pop_front();

@@ -3,6 +3,7 @@
 // them pulls in the heap, exceptions, RTTI or abort().
 #include "tetrapulse/protocol/can_transfer_receiver.hpp"
 #include "tetrapulse/protocol/can_transfer_sender.hpp"
+#include "tetrapulse/protocol/clock_bracket.hpp"
 #include "tetrapulse/protocol/dfu.hpp"
 #include "tetrapulse/protocol/image_header.hpp"
 #include "tetrapulse/protocol/message.hpp"
@@ -72,10 +73,19 @@ void transports() {
   if (status.ok()) g_sink = static_cast<uint8_t>(encode_dfu_status(*status, g_frame, sizeof(g_frame)).error());
   g_sink = static_cast<uint8_t>(encode_usb_protocol_info(UsbProtocolInfo{}, g_frame, sizeof(g_frame)).error());
 }
+
+volatile int64_t g_clock;
+int64_t read_clock() {
+  g_clock = g_clock + g_sink;
+  return g_clock;
+}
+
+void clocks() { g_sink = static_cast<uint8_t>(bracketed_clock_offset_ns(read_clock, [] { return g_clock * 2; })); }
 }  // namespace
 
 int main() {
   messages();
   transports();
+  clocks();
   return g_sink;
 }

@@ -1,10 +1,10 @@
 // The bootloader of the STM32F405 reference board.
 //
-// At reset it lets the core's boot selection (fw/boot_slot.hpp) check both slots, choose
+// At reset it lets the core's boot selection (fw/boot/boot_slot.hpp) check both slots, choose
 // one, record the choice and start it; clocks stay at their reset values on that path.
 // It stays instead when the application asked it to (boot handoff: Reboot{bootloader},
 // DFU_DETACH) or no slot holds a valid image, and waits for an update on two paths, both
-// into the slot that is not the known-good image (fw/update_slot.hpp):
+// into the slot that is not the known-good image (fw/boot/update_slot.hpp):
 //   USB DFU  1209:0002, one DFU-mode interface (SPEC.md §5.6). dfu-util sends
 //            tetrapulse.dfu, the bundle of both slot images, or a single image; the
 //            ImageBundleWriter keeps the target slot's one, verifies it at manifestation
@@ -14,20 +14,19 @@
 //            GetStatus, Reboot (SPEC.md §7.3), at the node id of the stored configuration.
 // QEMU models neither the OTG core nor bxCAN: under the emulator this mode runs without
 // either (the QEMU test only exercises the boot path).
-#include <array>
 #include <cstdint>
 
-#include "tetrapulse/fw/boot_slot.hpp"
-#include "tetrapulse/fw/bootloader_command_handler.hpp"
-#include "tetrapulse/fw/can_link.hpp"
-#include "tetrapulse/fw/config_store.hpp"
-#include "tetrapulse/fw/dfu_device.hpp"
-#include "tetrapulse/fw/image_bundle_writer.hpp"
-#include "tetrapulse/fw/record_store.hpp"
-#include "tetrapulse/fw/update_receiver.hpp"
-#include "tetrapulse/fw/update_slot.hpp"
-#include "tetrapulse/fw/usb_control.hpp"
-#include "tetrapulse/fw/usb_endpoint_zero.hpp"
+#include "tetrapulse/fw/boot/boot_slot.hpp"
+#include "tetrapulse/fw/boot/bootloader_command_handler.hpp"
+#include "tetrapulse/fw/boot/image_bundle_writer.hpp"
+#include "tetrapulse/fw/boot/slot_survey.hpp"
+#include "tetrapulse/fw/boot/update_receiver.hpp"
+#include "tetrapulse/fw/links/can_link.hpp"
+#include "tetrapulse/fw/storage/config_store.hpp"
+#include "tetrapulse/fw/storage/record_store.hpp"
+#include "tetrapulse/fw/usb/dfu_device.hpp"
+#include "tetrapulse/fw/usb/usb_control.hpp"
+#include "tetrapulse/fw/usb/usb_endpoint_zero.hpp"
 #include "tetrapulse/stm32f405/board_identity.hpp"
 #include "tetrapulse/stm32f405/boot_handoff.hpp"
 #include "tetrapulse/stm32f405/bx_can.hpp"
@@ -82,15 +81,9 @@ uint32_t now_ms(const LocalTimer& clock) { return static_cast<uint32_t>(clock.re
   const bool real_chip = clocks.source != ClockSource::kUnreadable;
 
   static fw::RecordStore store(flash, layout.record_sectors);
-  (void)store.open();  // unreadable: empty; the update still works
-  std::array<fw::SlotCheck, fw::kSlotCount> checks{};
-  for (uint8_t s = 0; s < fw::kSlotCount; ++s) {
-    const tp::Result<tp::ImageHeader> h = fw::check_slot_image(flash, layout.slots[s], board, layout.vector_alignment);
-    checks[s] = fw::SlotCheck{h.ok(), h ? h->fw_version : 0};
-  }
-  const tp::Result<fw::BootState> stored = fw::load_boot_state(store);
-  const uint8_t target = fw::update_target_slot(stored, checks);
-  const uint8_t fallback = fw::known_good_slot(stored, checks);
+  const fw::SlotSurvey survey = fw::survey_slots(store, flash, layout, board);
+  const uint8_t target = survey.update_target();
+  const uint8_t fallback = survey.known_good();
 
   // CAN: the core's update receiver writes `target` (it writes the slot that is not "active").
   const bool can_up = bx_can().start(clocks.apb1_hz, BxCan::kDefaultBitrate, clock);

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "tetrapulse/fw/firmware.hpp"
+#include "tetrapulse/fw/app/firmware.hpp"
 #include "tetrapulse/protocol/message.hpp"
 #include "tetrapulse/sim_board/sim_board.hpp"
 

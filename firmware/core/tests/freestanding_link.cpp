@@ -1,12 +1,12 @@
 // Linked bare-metal in the firmware build (core/CMakeLists.txt): the whole firmware core
 // behind do-nothing seams, so check_freestanding.cmake can show that none of it pulls in
 // the heap, exceptions, RTTI or abort().
-#include "tetrapulse/fw/boot_state.hpp"
-#include "tetrapulse/fw/can_link.hpp"
-#include "tetrapulse/fw/firmware.hpp"
-#include "tetrapulse/fw/image_check.hpp"
-#include "tetrapulse/fw/uart_link.hpp"
-#include "tetrapulse/fw/usb_link.hpp"
+#include "tetrapulse/fw/app/firmware.hpp"
+#include "tetrapulse/fw/boot/boot_state.hpp"
+#include "tetrapulse/fw/boot/image_check.hpp"
+#include "tetrapulse/fw/links/can_link.hpp"
+#include "tetrapulse/fw/links/uart_link.hpp"
+#include "tetrapulse/fw/links/usb_link.hpp"
 
 using namespace tetrapulse;
 using namespace tetrapulse::fw;

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "board_boot.hpp"
-#include "tetrapulse/fw/can_link.hpp"
-#include "tetrapulse/fw/dfu_device.hpp"
-#include "tetrapulse/fw/firmware.hpp"
-#include "tetrapulse/fw/usb_link.hpp"
-#include "tetrapulse/fw/usb_message_function.hpp"
+#include "tetrapulse/fw/app/firmware.hpp"
+#include "tetrapulse/fw/links/can_link.hpp"
+#include "tetrapulse/fw/links/usb_link.hpp"
+#include "tetrapulse/fw/usb/dfu_device.hpp"
+#include "tetrapulse/fw/usb/usb_message_function.hpp"
 #include "tetrapulse/linux_board/ffs_function.hpp"
 #include "tetrapulse/linux_board/gpio_leds.hpp"
 #include "tetrapulse/linux_board/gpio_sync_input.hpp"
@@ -47,31 +47,24 @@ const char* sync_state_name(tp::SyncState s) {
 
 }  // namespace
 
-BoardExit run_application(const LinuxBoardOptions& o, FileFlash& flash, const fw::BootChoice& choice) {
+BoardResult<tp::RebootMode> run_application(const LinuxBoardOptions& o, FileFlash& flash, const fw::BootChoice& choice) {
   MonotonicClock clock(o.clock_ppm);
   LinuxSystem system(o.serial);
-  std::string error;
-  GpioLeds leds(clock, o.led_lines, &error);
-  if (!error.empty()) {
-    board_log("error: " + error);
-    return {false, false, 1};
-  }
+  BoardResult<std::unique_ptr<GpioLeds>> opened_leds = GpioLeds::open(clock, o.led_lines);
+  if (!opened_leds) return tl::unexpected(opened_leds.error());
+  GpioLeds& leds = **opened_leds;
   std::unique_ptr<GpioSyncInput> sync_input;
   if (!o.sync_line.empty()) {
-    sync_input = std::make_unique<GpioSyncInput>(clock, o.sync_line, &error);
-    if (!error.empty()) {
-      board_log("error: " + error);
-      return {false, false, 1};
-    }
+    BoardResult<std::unique_ptr<GpioSyncInput>> opened = GpioSyncInput::open(clock, o.sync_line);
+    if (!opened) return tl::unexpected(opened.error());
+    sync_input = std::move(*opened);
   }
   std::unique_ptr<SocketCanBus> can_bus;
   std::optional<fw::CanLink> can_link;
   if (!o.can_interface.empty()) {
-    can_bus = SocketCanBus::open(o.can_interface, clock, &error);
-    if (!can_bus) {
-      board_log("error: " + error);
-      return {false, false, 1};
-    }
+    BoardResult<std::unique_ptr<SocketCanBus>> opened = SocketCanBus::open(o.can_interface, clock);
+    if (!opened) return tl::unexpected(opened.error());
+    can_bus = std::move(*opened);
     can_link.emplace(*can_bus, MonotonicClock::kTickHz, o.node_id);
   }
 
@@ -102,28 +95,16 @@ BoardExit run_application(const LinuxBoardOptions& o, FileFlash& flash, const fw
   std::optional<fw::DfuDevice> dfu;
   const tp::UsbDeviceParams params = linux_usb_params(tp::UsbMode::kApplication, choice.header.fw_version);
   if (!o.usb_gadget.empty()) {
-    const UsbGadgetSpec spec{o.usb_gadget, o.usb_mount, tp::UsbMode::kApplication, params.bcd_device,
-                             serial_text(o.serial), o.usb_udc};
-    if (std::string e = gadget.create(spec); !e.empty()) {
-      board_log("error: USB gadget: " + e);
-      return {false, false, 1};
-    }
-    usb = FfsFunction::open(o.usb_mount, params, serial_text(o.serial), &error);
-    if (!usb) {
-      gadget.remove();
-      board_log("error: USB gadget: " + error);
-      return {false, false, 1};
-    }
+    BoardResult<std::unique_ptr<FfsFunction>> opened = open_usb_function(gadget, o, params);
+    if (!opened) return tl::unexpected(opened.error());
+    usb = std::move(*opened);
     usb_link.emplace(*usb);
     messages.emplace(*usb_link, firmware, clock,
                      tp::kUsbCapabilityBulkMessages | tp::kUsbCapabilityControlMessages | tp::kUsbCapabilityDfuRuntime);
     dfu.emplace(static_cast<fw::DfuRuntimeTarget&>(system), params);
     usb->set_function(tp::kUsbMessageInterface, *messages);
     usb->set_function(tp::kUsbDfuRuntimeInterface, *dfu);
-    if (std::string e = gadget.bind(); !e.empty()) {
-      board_log("error: USB gadget: " + e);
-      return {false, false, 1};
-    }
+    if (BoardResult<void> bound = gadget.bind(); !bound) return tl::unexpected(bound.error());
   }
   board_log("application " + version_text(choice.header.fw_version) + " from slot " + std::to_string(choice.slot) +
             ", node " + std::to_string(firmware.board().config().node_id) +
@@ -178,9 +159,8 @@ BoardExit run_application(const LinuxBoardOptions& o, FileFlash& flash, const fw
     }
     if (const auto& mode = system.requested()) {
       if (usb) usb->drain(500);  // the reboot's Ack leaves first
-      const bool stay = *mode == tp::RebootMode::kBootloader;
-      board_log(std::string("reset") + (stay ? " into the DFU bootloader" : ""));
-      return {true, stay, 0};
+      board_log(std::string("reset") + (*mode == tp::RebootMode::kBootloader ? " into the DFU bootloader" : ""));
+      return *mode;
     }
     if (o.report_clock && monotonic_ns() >= next_report) {
       next_report += 1'000'000'000;

@@ -8,10 +8,10 @@
 #include <array>
 
 #include "board_boot.hpp"
-#include "tetrapulse/fw/dfu_device.hpp"
-#include "tetrapulse/fw/image_bundle_writer.hpp"
-#include "tetrapulse/fw/record_store.hpp"
-#include "tetrapulse/fw/update_slot.hpp"
+#include "tetrapulse/fw/boot/image_bundle_writer.hpp"
+#include "tetrapulse/fw/boot/slot_survey.hpp"
+#include "tetrapulse/fw/storage/record_store.hpp"
+#include "tetrapulse/fw/usb/dfu_device.hpp"
 #include "tetrapulse/linux_board/ffs_function.hpp"
 #include "tetrapulse/linux_board/monotonic_clock.hpp"
 #include "tetrapulse/linux_board/usb_gadget.hpp"
@@ -41,28 +41,21 @@ const char* status_name(tp::DfuStatusCode s) {
 
 }  // namespace
 
-BoardExit run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
+BoardResult<tp::RebootMode> run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
   const fw::FlashLayout layout = linux_flash_layout();
   const fw::BoardModel model{tp::HwModel::kLinuxBoard, LinuxSystem::kHwRevision};
   fw::RecordStore store(flash, layout.record_sectors);
-  static_cast<void>(store.open());  // unreadable reads as empty: the boot state is then "none"
-  std::array<fw::SlotCheck, fw::kSlotCount> checks{};
-  for (uint8_t s = 0; s < fw::kSlotCount; ++s) {
-    const tp::Result<tp::ImageHeader> h = fw::check_slot_image(flash, layout.slots[s], model, layout.vector_alignment);
-    checks[s].valid = h.ok();
-    if (h) checks[s].fw_version = h->fw_version;
-  }
-  const tp::Result<fw::BootState> state = fw::load_boot_state(store);
-  const uint8_t good = fw::known_good_slot(state, checks);
-  const uint8_t target = fw::update_target_slot(state, checks);
+  const fw::SlotSurvey survey = fw::survey_slots(store, flash, layout, model);
+  const uint8_t good = survey.known_good();
+  const uint8_t target = survey.update_target();
 
   if (o.usb_gadget.empty()) {
     if (good != fw::kNoSlot) {
       board_log("bootloader: no USB gadget to update through; starting the application");
-      return {true, false, 0};
+      return tp::RebootMode::kApplication;
     }
-    board_log("error: no valid image in either slot and no USB gadget (--usb-gadget) to receive one");
-    return {false, false, 1};
+    return board_error(BoardErrorKind::kNoImage, "",
+                       "no valid image in either slot and no USB gadget (--usb-gadget) to receive one");
   }
   fw::ImageBundleWriter writer(flash, layout, store, model, target, good);
   const tp::UsbDeviceParams params = linux_usb_params(tp::UsbMode::kBootloader, 0);
@@ -70,24 +63,11 @@ BoardExit run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
   fw::DfuDevice dfu(writer, params, block.data(), block.size());
 
   UsbGadget gadget;
-  const UsbGadgetSpec spec{o.usb_gadget, o.usb_mount, tp::UsbMode::kBootloader, params.bcd_device,
-                           serial_text(o.serial), o.usb_udc};
-  std::string error;
-  if (std::string e = gadget.create(spec); !e.empty()) {
-    board_log("error: USB gadget: " + e);
-    return {false, false, 1};
-  }
-  std::unique_ptr<FfsFunction> usb = FfsFunction::open(o.usb_mount, params, serial_text(o.serial), &error);
-  if (!usb) {
-    gadget.remove();
-    board_log("error: USB gadget: " + error);
-    return {false, false, 1};
-  }
-  usb->set_function(0, dfu);
-  if (std::string e = gadget.bind(); !e.empty()) {
-    board_log("error: USB gadget: " + e);
-    return {false, false, 1};
-  }
+  BoardResult<std::unique_ptr<FfsFunction>> opened = open_usb_function(gadget, o, params);
+  if (!opened) return tl::unexpected(opened.error());
+  FfsFunction& usb = **opened;
+  usb.set_function(0, dfu);
+  if (BoardResult<void> bound = gadget.bind(); !bound) return tl::unexpected(bound.error());
   board_log("bootloader: DFU mode, writing slot " + std::to_string(target) +
             (good == fw::kNoSlot ? ", no valid application" : ", application in slot " + std::to_string(good)));
 
@@ -96,9 +76,9 @@ BoardExit run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
   int64_t reset_done_at = 0;  // the host's USB reset after the verdict has re-enumerated the device
   tp::DfuStatusCode reported = tp::DfuStatusCode::kOk;
   for (;;) {
-    pollfd p{usb->ep0_fd(), POLLIN, 0};
+    pollfd p{usb.ep0_fd(), POLLIN, 0};
     if (::poll(&p, 1, 5) > 0) {
-      for (const char* event : usb->handle_ep0()) {
+      for (const char* event : usb.handle_ep0()) {
         board_log(std::string("usb: ") + event);
         // The host's USB reset after the verdict (dfu-util -R): the device goes (DISABLE) and
         // comes back (ENABLE); restart once libusb_reset_device has seen it return.
@@ -107,7 +87,7 @@ BoardExit run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
     }
     const int64_t now = monotonic_ns();
     dfu.poll(static_cast<uint32_t>(now / 1'000'000));
-    if (usb->last_request_ns() > idle_since) idle_since = usb->last_request_ns();
+    if (usb.last_request_ns() > idle_since) idle_since = usb.last_request_ns();
     if (dfu.status() != reported) {
       reported = dfu.status();
       if (reported != tp::DfuStatusCode::kOk && installed_at == 0) board_log(std::string("bootloader: download refused: ") + status_name(reported));
@@ -118,12 +98,12 @@ BoardExit run_dfu_mode(const LinuxBoardOptions& o, FileFlash& flash) {
     }
     if (installed_at != 0 && ((reset_done_at != 0 && now - reset_done_at >= kAfterResetNs) ||
                               (reset_done_at == 0 && now - installed_at >= kResetGraceNs))) {
-      return {true, false, 0};
+      return tp::RebootMode::kApplication;
     }
     const bool mid_download = dfu.state() != tp::DfuState::kDfuIdle && dfu.state() != tp::DfuState::kDfuError;
     if (installed_at == 0 && good != fw::kNoSlot && !mid_download && now - idle_since >= int64_t{o.dfu_idle_s} * 1'000'000'000) {
       board_log("bootloader: no DFU request for " + std::to_string(o.dfu_idle_s) + " s; back to the application");
-      return {true, false, 0};
+      return tp::RebootMode::kApplication;
     }
   }
 }

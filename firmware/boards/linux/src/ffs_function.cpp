@@ -156,39 +156,33 @@ FfsBlobs ffs_blobs(const tp::UsbDeviceParams& params, const std::string& serial)
   return blobs;
 }
 
-std::unique_ptr<FfsFunction> FfsFunction::open(const std::string& mount_dir, const tp::UsbDeviceParams& params,
-                                               const std::string& serial, std::string* error) {
+BoardResult<std::unique_ptr<FfsFunction>> FfsFunction::open(const std::string& mount_dir,
+                                                             const tp::UsbDeviceParams& params,
+                                                             const std::string& serial) {
+  const std::string ep0 = mount_dir + "/ep0";
+  const auto failed = [](std::string where, std::string message) {
+    return board_error(BoardErrorKind::kUsbGadget, std::move(where), std::move(message));
+  };
   std::unique_ptr<FfsFunction> f(new FfsFunction());
-  f->ep0_ = ::open((mount_dir + "/ep0").c_str(), O_RDWR | O_CLOEXEC);
-  if (f->ep0_ < 0) {
-    *error = mount_dir + "/ep0: " + std::strerror(errno);
-    return nullptr;
-  }
+  f->ep0_ = ::open(ep0.c_str(), O_RDWR | O_CLOEXEC);
+  if (f->ep0_ < 0) return failed(ep0, std::strerror(errno));
   const FfsBlobs blobs = ffs_blobs(params, serial);
   if (!write_all(f->ep0_, blobs.descriptors.data(), blobs.descriptors.size())) {
-    *error = mount_dir + "/ep0: the kernel refused the descriptors: " + std::strerror(errno) +
-             (params.dfu_functional_descriptor ? " (a kernel before 6.x refuses the DFU functional descriptor)" : "");
-    return nullptr;
+    const char* hint = params.dfu_functional_descriptor ? " (a kernel before 6.x refuses the DFU functional descriptor)" : "";
+    return failed(ep0, std::string("the kernel refused the descriptors: ") + std::strerror(errno) + hint);
   }
   if (!write_all(f->ep0_, blobs.strings.data(), blobs.strings.size())) {
-    *error = mount_dir + "/ep0: the kernel refused the strings: " + std::strerror(errno);
-    return nullptr;
+    return failed(ep0, std::string("the kernel refused the strings: ") + std::strerror(errno));
   }
   f->bulk_event_ = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
-  if (f->bulk_event_ < 0) {
-    *error = std::string("eventfd: ") + std::strerror(errno);
-    return nullptr;
-  }
+  if (f->bulk_event_ < 0) return failed("eventfd", std::strerror(errno));
   if (params.mode != tp::UsbMode::kApplication) return f;
   auto bulk = std::make_shared<Bulk>();
   bulk->event = f->bulk_event_;
   // FunctionFS names endpoint files by descriptor order: ep1 bulk OUT, ep2 bulk IN.
   bulk->out = ::open((mount_dir + "/ep1").c_str(), O_RDWR | O_CLOEXEC);
   bulk->in = ::open((mount_dir + "/ep2").c_str(), O_RDWR | O_CLOEXEC);
-  if (bulk->out < 0 || bulk->in < 0) {
-    *error = mount_dir + "/ep1, ep2: " + std::strerror(errno);
-    return nullptr;
-  }
+  if (bulk->out < 0 || bulk->in < 0) return failed(mount_dir + "/ep1, ep2", std::strerror(errno));
   std::thread([bulk] { bulk->read_loop(); }).detach();
   std::thread([bulk] { bulk->write_loop(); }).detach();
   f->bulk_ = std::move(bulk);

@@ -30,49 +30,43 @@ fw::FlashLayout linux_flash_layout() {
   return layout;
 }
 
-std::unique_ptr<FileFlash> FileFlash::open(const std::string& path, std::vector<fw::FlashRegion> sectors,
-                                           bool* created, std::string* error) {
+BoardResult<std::unique_ptr<FileFlash>> FileFlash::open(const std::string& path, std::vector<fw::FlashRegion> sectors) {
   const uint32_t size = sectors.empty() ? 0 : sectors.back().end() - sectors.front().address;
-  *created = false;
+  const auto failed = [&](std::string message) { return board_error(BoardErrorKind::kFlash, path, std::move(message)); };
+  bool created = false;
   int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
   if (fd < 0 && errno == ENOENT) {
     // Created under a temporary name and renamed once erased, so a half-made file never
     // passes for flash.
     const std::string temporary = path + ".new";
     fd = ::open(temporary.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) {
-      *error = path + ": cannot create: " + std::strerror(errno);
-      return nullptr;
-    }
+    if (fd < 0) return failed(std::string("cannot create: ") + std::strerror(errno));
     const std::vector<uint8_t> erased(size, 0xFF);
     if (::pwrite(fd, erased.data(), erased.size(), 0) != static_cast<ssize_t>(erased.size()) || ::fsync(fd) != 0 ||
         ::rename(temporary.c_str(), path.c_str()) != 0) {
-      *error = path + ": cannot write an erased flash file: " + std::strerror(errno);
+      const int e = errno;
       ::close(fd);
-      return nullptr;
+      return failed(std::string("cannot write an erased flash file: ") + std::strerror(e));
     }
-    *created = true;
+    created = true;
   }
-  if (fd < 0) {
-    *error = path + ": cannot open: " + std::strerror(errno);
-    return nullptr;
-  }
+  if (fd < 0) return failed(std::string("cannot open: ") + std::strerror(errno));
   struct stat st{};
   if (::fstat(fd, &st) != 0 || st.st_size != static_cast<off_t>(size)) {
-    *error = path + ": is " + std::to_string(st.st_size) + " bytes, not the board's " + std::to_string(size) +
-             " bytes of flash";
     ::close(fd);
-    return nullptr;
+    return failed("is " + std::to_string(st.st_size) + " bytes, not the board's " + std::to_string(size) +
+                  " bytes of flash");
   }
-  return std::unique_ptr<FileFlash>(new FileFlash(path, fd, std::move(sectors)));
+  return std::unique_ptr<FileFlash>(new FileFlash(path, fd, std::move(sectors), created));
 }
 
-FileFlash::FileFlash(std::string path, int fd, std::vector<fw::FlashRegion> sectors)
+FileFlash::FileFlash(std::string path, int fd, std::vector<fw::FlashRegion> sectors, bool created)
     : path_(std::move(path)),
       fd_(fd),
       sectors_(std::move(sectors)),
       base_(sectors_.front().address),
-      end_(sectors_.back().end()) {}
+      end_(sectors_.back().end()),
+      created_(created) {}
 
 FileFlash::~FileFlash() { ::close(fd_); }
 

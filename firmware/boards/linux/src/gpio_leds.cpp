@@ -8,24 +8,23 @@ namespace tetrapulse::linux_board {
 
 using protocol::Error;
 
-GpioLeds::GpioLeds(const fw::LocalClock& clock, const std::vector<std::string>& lines, std::string* error)
-    : clock_(clock) {
-  error->clear();
+BoardResult<std::unique_ptr<GpioLeds>> GpioLeds::open(const fw::LocalClock& clock, const std::vector<std::string>& lines) {
   if (lines.size() > fw::kLedCount) {
-    *error = "at most " + std::to_string(fw::kLedCount) + " LED lines, got " + std::to_string(lines.size());
-    return;
+    return board_error(BoardErrorKind::kGpio, "",
+                       "at most " + std::to_string(fw::kLedCount) + " LED lines, got " + std::to_string(lines.size()));
   }
+  std::unique_ptr<GpioLeds> leds(new GpioLeds(clock));
   for (size_t i = 0; i < lines.size(); ++i) {
-    gpiod::line line = find_gpio_line(lines[i], error);
-    if (!error->empty()) return;
+    BoardResult<gpiod::line> line = find_gpio_line(lines[i]);
+    if (!line) return tl::unexpected(line.error());
     try {
-      line.request({"tetrapulse-board", gpiod::line_request::DIRECTION_OUTPUT, 0}, 0);
+      line->request({"tetrapulse-board", gpiod::line_request::DIRECTION_OUTPUT, 0}, 0);
     } catch (const std::exception& e) {
-      *error = "LED " + std::to_string(i) + " on GPIO line '" + lines[i] + "': " + e.what();
-      return;
+      return board_error(BoardErrorKind::kGpio, "LED " + std::to_string(i) + " on GPIO line '" + lines[i] + "'", e.what());
     }
-    lines_[i] = line;
+    leds->lines_[i] = *line;
   }
+  return leds;
 }
 
 void GpioLeds::drive(uint8_t index, uint16_t duty) {

@@ -16,15 +16,13 @@ bool all_digits(const std::string& s) {
 
 }  // namespace
 
-gpiod::line find_gpio_line(const std::string& text, std::string* error) {
+BoardResult<gpiod::line> find_gpio_line(const std::string& text) {
+  const std::string where = "GPIO line '" + text + "'";
   // Chip labels may contain ':' ("gpio-sim.0:node0"), line names do not: split at the last one.
   const size_t colon = text.rfind(':');
   const std::string chip_name = colon == std::string::npos ? std::string() : text.substr(0, colon);
   const std::string line_name = colon == std::string::npos ? text : text.substr(colon + 1);
-  if (line_name.empty()) {
-    *error = "GPIO line '" + text + "': no line after the chip";
-    return {};
-  }
+  if (line_name.empty()) return board_error(BoardErrorKind::kGpio, where, "no line after the chip");
   try {
     gpiod::line line;
     if (chip_name.empty()) {
@@ -34,11 +32,10 @@ gpiod::line find_gpio_line(const std::string& text, std::string* error) {
       line = all_digits(line_name) ? chip.get_line(static_cast<unsigned>(std::stoul(line_name)))
                                    : chip.find_line(line_name);
     }
-    if (!line) *error = "GPIO line '" + text + "': no such line";
+    if (!line) return board_error(BoardErrorKind::kGpio, where, "no such line");
     return line;
   } catch (const std::exception& e) {
-    *error = "GPIO line '" + text + "': " + e.what();
-    return {};
+    return board_error(BoardErrorKind::kGpio, where, e.what());
   }
 }
 

@@ -6,10 +6,10 @@
 
 namespace tetrapulse::linux_board {
 
-GpioSyncInput::GpioSyncInput(const MonotonicClock& clock, const std::string& line, std::string* error)
-    : clock_(clock), name_(line) {
-  error->clear();
-  line_ = find_gpio_line(line, error);
+BoardResult<std::unique_ptr<GpioSyncInput>> GpioSyncInput::open(const MonotonicClock& clock, const std::string& line) {
+  BoardResult<gpiod::line> found = find_gpio_line(line);
+  if (!found) return tl::unexpected(found.error());
+  return std::unique_ptr<GpioSyncInput>(new GpioSyncInput(clock, line, std::move(*found)));
 }
 
 int GpioSyncInput::fd() const {

@@ -115,14 +115,17 @@ int main(int argc, char** argv) {
   if (o.usb_mount.empty() && !o.usb_gadget.empty()) o.usb_mount = "/dev/ffs-" + o.usb_gadget;
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
 
-  const lb::BoardExit exit = lb::run_board(o);
-  if (!exit.restart) return exit.status;
+  const lb::BoardResult<tetrapulse::protocol::RebootMode> reset = lb::run_board(o);
+  if (!reset) {
+    lb::board_log("error: " + reset.error().what());
+    return 1;
+  }
   // A reset: the same program and arguments again, asking the bootloader to stay or not.
   std::vector<std::string> args;
   for (int i = 0; i < argc; ++i) {
     if (std::string(argv[i]) != "--stay-in-bootloader") args.emplace_back(argv[i]);
   }
-  if (exit.stay_in_bootloader) args.emplace_back("--stay-in-bootloader");
+  if (*reset == tetrapulse::protocol::RebootMode::kBootloader) args.emplace_back("--stay-in-bootloader");
   std::vector<char*> c_args;
   for (std::string& a : args) c_args.push_back(a.data());
   c_args.push_back(nullptr);

@@ -19,21 +19,7 @@ int64_t read_clock(clockid_t id) {
 
 int64_t monotonic_ns() { return read_clock(CLOCK_MONOTONIC); }
 
-int64_t monotonic_from_realtime_ns(int64_t realtime_ns) {
-  // REALTIME - MONOTONIC from the tightest of a few brackets: a preemption inside one (a
-  // loaded or emulated machine) would skew it by half its length.
-  int64_t best_span = INT64_MAX, difference = 0;
-  for (int i = 0; i < 3; ++i) {
-    const int64_t before = read_clock(CLOCK_MONOTONIC);
-    const int64_t real = read_clock(CLOCK_REALTIME);
-    const int64_t after = read_clock(CLOCK_MONOTONIC);
-    if (after - before < best_span) {
-      best_span = after - before;
-      difference = real - (before + (after - before) / 2);
-    }
-  }
-  return realtime_ns - difference;
-}
+int64_t realtime_ns() { return read_clock(CLOCK_REALTIME); }
 
 MonotonicClock::MonotonicClock(double ppm)
     : start_ns_(monotonic_ns()), ppb_(static_cast<int64_t>(std::llround(ppm * 1000.0))) {}

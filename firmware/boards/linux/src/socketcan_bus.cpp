@@ -13,22 +13,19 @@
 #include <cerrno>
 #include <cstring>
 
-#include "tetrapulse/fw/board_state.hpp"
+#include "tetrapulse/fw/app/board_state.hpp"
+#include "tetrapulse/protocol/clock_bracket.hpp"
 
 namespace tetrapulse::linux_board {
 
-std::unique_ptr<SocketCanBus> SocketCanBus::open(const std::string& interface_name, const MonotonicClock& clock,
-                                                 std::string* error) {
-  const std::string where = "CAN interface '" + interface_name + "': ";
+BoardResult<std::unique_ptr<SocketCanBus>> SocketCanBus::open(const std::string& interface_name,
+                                                              const MonotonicClock& clock) {
+  const std::string where = "CAN interface '" + interface_name + "'";
   const unsigned index = if_nametoindex(interface_name.c_str());
-  if (index == 0) {
-    *error = where + "no such interface";
-    return nullptr;
-  }
+  if (index == 0) return board_error(BoardErrorKind::kCan, where, "no such interface");
   const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
   if (fd < 0) {
-    *error = where + "cannot open a raw CAN socket: " + std::strerror(errno);
-    return nullptr;
+    return board_error(BoardErrorKind::kCan, where, std::string("cannot open a raw CAN socket: ") + std::strerror(errno));
   }
   const int on = 1;
   const can_err_mask_t errors = CAN_ERR_MASK;
@@ -38,9 +35,9 @@ std::unique_ptr<SocketCanBus> SocketCanBus::open(const std::string& interface_na
   if (::setsockopt(fd, SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof(on)) != 0 ||
       ::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &errors, sizeof(errors)) != 0 ||
       ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) {
-    *error = where + std::strerror(errno);
+    const int e = errno;
     ::close(fd);
-    return nullptr;
+    return board_error(BoardErrorKind::kCan, where, std::strerror(e));
   }
   return std::unique_ptr<SocketCanBus>(new SocketCanBus(fd, interface_name, clock));
 }
@@ -105,7 +102,10 @@ std::optional<ReceivedCanFrame> SocketCanBus::receive() {
       if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
         timespec t{};
         std::memcpy(&t, CMSG_DATA(c), sizeof(t));
-        monotonic = monotonic_from_realtime_ns(static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec);
+        // On CLOCK_MONOTONIC through the current difference of the two clocks: a stamp is
+        // converted microseconds after it was taken, so an NTP step in between is not worth a guard.
+        const int64_t realtime = static_cast<int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+        monotonic = realtime - protocol::bracketed_clock_offset_ns(monotonic_ns, realtime_ns);
       }
     }
     ReceivedCanFrame r;

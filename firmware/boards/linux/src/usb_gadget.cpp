@@ -25,17 +25,21 @@ std::string hex4(uint16_t v) {
   return text;
 }
 
-// Writes `value` to a configfs attribute; empty on success.
-std::string put(const std::string& path, const std::string& value) {
+tl::unexpected<BoardError> gadget_error(std::string where, std::string message) {
+  return board_error(BoardErrorKind::kUsbGadget, std::move(where), std::move(message));
+}
+
+// Writes `value` to a configfs attribute.
+BoardResult<void> put(const std::string& path, const std::string& value) {
   std::ofstream out(path);
   out << value << '\n';
   out.flush();
-  if (!out) return path + ": cannot write '" + value + "'";
+  if (!out) return gadget_error(path, "cannot write '" + value + "'");
   return {};
 }
 
-std::string make_dir(const std::string& path) {
-  if (::mkdir(path.c_str(), 0755) != 0 && errno != EEXIST) return path + ": " + std::strerror(errno);
+BoardResult<void> make_dir(const std::string& path) {
+  if (::mkdir(path.c_str(), 0755) != 0 && errno != EEXIST) return gadget_error(path, std::strerror(errno));
   return {};
 }
 
@@ -55,7 +59,7 @@ std::string first_udc() {
 
 }  // namespace
 
-std::string UsbGadget::create(const UsbGadgetSpec& spec) {
+BoardResult<void> UsbGadget::create(const UsbGadgetSpec& spec) {
   spec_ = spec;
   remove();
   const std::string g = kGadgetRoot + spec.name;
@@ -64,31 +68,31 @@ std::string UsbGadget::create(const UsbGadgetSpec& spec) {
       spec.mode == tp::UsbMode::kApplication ? tp::kUsbProductIdApplication : tp::kUsbProductIdBootloader;
   struct stat st{};
   if (::stat(kGadgetRoot.c_str(), &st) != 0) {
-    return kGadgetRoot + " is missing: mount configfs and load libcomposite and usb_f_fs";
+    return gadget_error("", kGadgetRoot + " is missing: mount configfs and load libcomposite and usb_f_fs");
   }
-  for (const std::string& step :
+  for (const BoardResult<void>& step :
        {make_dir(g), put(g + "/idVendor", hex4(tp::kUsbVendorId)), put(g + "/idProduct", hex4(pid)),
         put(g + "/bcdDevice", hex4(spec.bcd_device)), put(g + "/bcdUSB", "0x0200"), make_dir(g + "/strings/0x409"),
         put(g + "/strings/0x409/manufacturer", tp::kUsbManufacturerString),
         put(g + "/strings/0x409/product", tp::kUsbProductString), put(g + "/strings/0x409/serialnumber", spec.serial),
         make_dir(g + "/configs/c.1"), put(g + "/configs/c.1/MaxPower", "100"), make_dir(function)}) {
-    if (!step.empty()) return step;
+    if (!step) return step;
   }
   if (::symlink(function.c_str(), (g + "/configs/c.1/ffs." + spec.name).c_str()) != 0 && errno != EEXIST) {
-    return g + "/configs/c.1: cannot link the function: " + std::strerror(errno);
+    return gadget_error(g + "/configs/c.1", std::string("cannot link the function: ") + std::strerror(errno));
   }
   std::error_code made;
   std::filesystem::create_directories(spec.mount_dir, made);
-  if (made) return spec.mount_dir + ": " + made.message();
+  if (made) return gadget_error(spec.mount_dir, made.message());
   if (::mount(spec.name.c_str(), spec.mount_dir.c_str(), "functionfs", 0, nullptr) != 0) {
-    return "mount functionfs " + spec.name + " at " + spec.mount_dir + ": " + std::strerror(errno);
+    return gadget_error("", "mount functionfs " + spec.name + " at " + spec.mount_dir + ": " + std::strerror(errno));
   }
   return {};
 }
 
-std::string UsbGadget::bind() {
+BoardResult<void> UsbGadget::bind() {
   const std::string udc = spec_.udc.empty() ? first_udc() : spec_.udc;
-  if (udc.empty()) return "no USB device controller in /sys/class/udc (load dummy_hcd, or a UDC driver)";
+  if (udc.empty()) return gadget_error("", "no USB device controller in /sys/class/udc (load dummy_hcd, or a UDC driver)");
   return put(kGadgetRoot + spec_.name + "/UDC", udc);
 }
 

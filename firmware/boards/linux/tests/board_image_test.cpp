@@ -5,11 +5,11 @@
 
 #include <filesystem>
 
-#include "tetrapulse/fw/boot_slot.hpp"
-#include "tetrapulse/fw/boot_state.hpp"
-#include "tetrapulse/fw/image_bundle_writer.hpp"
-#include "tetrapulse/fw/record_store.hpp"
-#include "tetrapulse/fw/update_slot.hpp"
+#include "tetrapulse/fw/boot/boot_slot.hpp"
+#include "tetrapulse/fw/boot/boot_state.hpp"
+#include "tetrapulse/fw/boot/image_bundle_writer.hpp"
+#include "tetrapulse/fw/boot/update_slot.hpp"
+#include "tetrapulse/fw/storage/record_store.hpp"
 #include "tetrapulse/linux_board/ffs_function.hpp"
 #include "tetrapulse/linux_board/file_flash.hpp"
 #include "tetrapulse/linux_board/linux_system.hpp"
@@ -83,10 +83,9 @@ class LinuxUpdateTest : public ::testing::Test {
     path_ = (fs::temp_directory_path() / ("linux_board_update_" + std::to_string(::getpid()) + "_" +
                                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".bin"))
                 .string();
-    bool created = false;
-    std::string error;
-    flash_ = FileFlash::open(path_, linux_flash_sectors(), &created, &error);
-    ASSERT_TRUE(flash_) << error;
+    BoardResult<std::unique_ptr<FileFlash>> opened = FileFlash::open(path_, linux_flash_sectors());
+    ASSERT_TRUE(opened) << opened.error().what();
+    flash_ = std::move(*opened);
     const std::vector<uint8_t> factory = make_linux_image(tp::pack_version(1, 0, 0), seeded_payload(3000, 1));
     ASSERT_TRUE(flash_->load(layout_.slots[0].region.address, tp::ByteView{factory.data(), factory.size()}));
     store_.emplace(*flash_, layout_.record_sectors);

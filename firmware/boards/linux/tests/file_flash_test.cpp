@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "tetrapulse/fw/config_store.hpp"
-#include "tetrapulse/fw/record_store.hpp"
+#include "tetrapulse/fw/storage/config_store.hpp"
+#include "tetrapulse/fw/storage/record_store.hpp"
 
 namespace tetrapulse::linux_board {
 namespace {
@@ -26,11 +26,11 @@ class FileFlashTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   std::unique_ptr<FileFlash> open(bool* created = nullptr) {
-    bool c = false;
-    std::string error;
-    auto flash = FileFlash::open(path_, linux_flash_sectors(), created ? created : &c, &error);
-    EXPECT_TRUE(flash) << error;
-    return flash;
+    BoardResult<std::unique_ptr<FileFlash>> flash = FileFlash::open(path_, linux_flash_sectors());
+    EXPECT_TRUE(flash) << flash.error().what();
+    if (!flash) return nullptr;
+    if (created != nullptr) *created = (*flash)->created();
+    return std::move(*flash);
   }
 
   fs::path dir_;
@@ -78,9 +78,10 @@ TEST_F(FileFlashTest, ProgrammingOnlyClearsBitsAndEraseIsPerSector) {
 
 TEST_F(FileFlashTest, RefusesAFileOfAnotherSize) {
   { std::FILE* f = std::fopen(path_.c_str(), "wb"); std::fputs("short", f); std::fclose(f); }
-  bool created = false;
-  std::string error;
-  EXPECT_FALSE(FileFlash::open(path_, linux_flash_sectors(), &created, &error));
+  const BoardResult<std::unique_ptr<FileFlash>> flash = FileFlash::open(path_, linux_flash_sectors());
+  ASSERT_FALSE(flash);
+  EXPECT_EQ(flash.error().kind, BoardErrorKind::kFlash);
+  const std::string error = flash.error().what();
   EXPECT_NE(error.find("not the board's"), std::string::npos) << error;
 }
 

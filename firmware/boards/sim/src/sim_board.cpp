@@ -2,10 +2,10 @@
 
 #include <cmath>
 
-#include "tetrapulse/fw/boot_slot.hpp"
-#include "tetrapulse/fw/boot_state.hpp"
-#include "tetrapulse/fw/config_store.hpp"
-#include "tetrapulse/fw/record_store.hpp"
+#include "tetrapulse/fw/boot/boot_slot.hpp"
+#include "tetrapulse/fw/boot/boot_state.hpp"
+#include "tetrapulse/fw/storage/config_store.hpp"
+#include "tetrapulse/fw/storage/record_store.hpp"
 #include "tetrapulse/protocol/version.hpp"
 #include "tetrapulse/sim_board/sim_image.hpp"
 

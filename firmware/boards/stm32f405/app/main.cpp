@@ -2,14 +2,14 @@
 // hardware seams and hands them to the firmware core, then runs the main loop.
 #include <cstdint>
 
-#include "tetrapulse/fw/can_link.hpp"
-#include "tetrapulse/fw/dfu_device.hpp"
-#include "tetrapulse/fw/firmware.hpp"
-#include "tetrapulse/fw/uart_link.hpp"
-#include "tetrapulse/fw/usb_control.hpp"
-#include "tetrapulse/fw/usb_endpoint_zero.hpp"
-#include "tetrapulse/fw/usb_link.hpp"
-#include "tetrapulse/fw/usb_message_function.hpp"
+#include "tetrapulse/fw/app/firmware.hpp"
+#include "tetrapulse/fw/links/can_link.hpp"
+#include "tetrapulse/fw/links/uart_link.hpp"
+#include "tetrapulse/fw/links/usb_link.hpp"
+#include "tetrapulse/fw/usb/dfu_device.hpp"
+#include "tetrapulse/fw/usb/usb_control.hpp"
+#include "tetrapulse/fw/usb/usb_endpoint_zero.hpp"
+#include "tetrapulse/fw/usb/usb_message_function.hpp"
 #include "tetrapulse/protocol/response_messages.hpp"
 #include "tetrapulse/protocol/usb_device.hpp"
 #include "tetrapulse/stm32f405/board_identity.hpp"

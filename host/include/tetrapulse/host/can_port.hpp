@@ -32,13 +32,18 @@ struct CanPortEvent {
 
 class CanPort {
  public:
-  virtual ~CanPort() = default;
+  virtual ~CanPort() = default;  // owned through the base (unique_ptr<CanPort>)
   // "vcan0"
-  virtual const std::string& interface_name() const = 0;
+  const std::string& interface_name() const { return do_interface_name(); }
   // Queues one frame for transmission; returns a key that its kTxTimestamp event carries.
-  virtual HostResult<uint32_t> send(const protocol::CanFrame& frame) = 0;
+  HostResult<uint32_t> send(const protocol::CanFrame& frame) { return do_send(frame); }
   // Waits at most `timeout_ns` for the next event; nullopt when none came.
-  virtual HostResult<std::optional<CanPortEvent>> next(int64_t timeout_ns) = 0;
+  HostResult<std::optional<CanPortEvent>> next(int64_t timeout_ns) { return do_next(timeout_ns); }
+
+ private:
+  virtual const std::string& do_interface_name() const = 0;
+  virtual HostResult<uint32_t> do_send(const protocol::CanFrame& frame) = 0;
+  virtual HostResult<std::optional<CanPortEvent>> do_next(int64_t timeout_ns) = 0;
 };
 
 struct SocketCanOptions {

@@ -20,14 +20,24 @@ namespace tetrapulse::host {
 // The DFU class requests to one DFU-mode interface.
 class DfuControl {
  public:
-  virtual ~DfuControl() = default;
-  virtual const std::string& name() const = 0;  // names the device in errors
-  virtual HostResult<void> download(uint16_t block, protocol::ByteView data) = 0;  // DFU_DNLOAD
-  virtual HostResult<protocol::DfuStatus> get_status() = 0;                         // DFU_GETSTATUS
-  virtual HostResult<void> clear_status() = 0;                                      // DFU_CLRSTATUS
-  virtual HostResult<void> abort() = 0;                                             // DFU_ABORT
+  const std::string& name() const { return do_name(); }  // names the device in errors
+  HostResult<void> download(uint16_t block, protocol::ByteView data) { return do_download(block, data); }  // DFU_DNLOAD
+  HostResult<protocol::DfuStatus> get_status() { return do_get_status(); }  // DFU_GETSTATUS
+  HostResult<void> clear_status() { return do_clear_status(); }             // DFU_CLRSTATUS
+  HostResult<void> abort() { return do_abort(); }                           // DFU_ABORT
   // Waits `ms` (bwPollTimeout); a model in tests advances its own clock instead.
-  virtual void wait_ms(uint32_t ms) = 0;
+  void wait_ms(uint32_t ms) { do_wait_ms(ms); }
+
+ protected:
+  ~DfuControl() = default;  // used by reference, never owned through the base
+
+ private:
+  virtual const std::string& do_name() const = 0;
+  virtual HostResult<void> do_download(uint16_t block, protocol::ByteView data) = 0;
+  virtual HostResult<protocol::DfuStatus> do_get_status() = 0;
+  virtual HostResult<void> do_clear_status() = 0;
+  virtual HostResult<void> do_abort() = 0;
+  virtual void do_wait_ms(uint32_t ms) = 0;
 };
 
 struct DfuDownloadOptions {

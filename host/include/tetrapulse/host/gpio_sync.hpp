@@ -57,15 +57,22 @@ class GpioSyncLine {
     bool active = false;  // the line became active (else inactive)
     int64_t rig_ns = 0;   // when, in rig time
   };
-  virtual ~GpioSyncLine() = default;
-  virtual const std::string& name() const = 0;  // "gpio:gpiochip0:3"
-  virtual int64_t now() const = 0;              // rig time
+  virtual ~GpioSyncLine() = default;  // owned through the base (unique_ptr<GpioSyncLine>)
+  const std::string& name() const { return do_name(); }  // "gpio:gpiochip0:3"
+  int64_t now() const { return do_now(); }                // rig time
   // Waits until rig time `rig_ns`; false when `stop` was set first (checked at least every 100 ms).
-  virtual bool sleep_until(int64_t rig_ns, const std::atomic<bool>& stop) = 0;
+  bool sleep_until(int64_t rig_ns, const std::atomic<bool>& stop) { return do_sleep_until(rig_ns, stop); }
   // Output line: sets the level; returns the rig time it took effect.
-  virtual HostResult<int64_t> set(bool active) = 0;
+  HostResult<int64_t> set(bool active) { return do_set(active); }
   // Input line: the edges that come within `timeout_ns` (empty: none).
-  virtual HostResult<std::vector<Edge>> wait_edges(int64_t timeout_ns) = 0;
+  HostResult<std::vector<Edge>> wait_edges(int64_t timeout_ns) { return do_wait_edges(timeout_ns); }
+
+ private:
+  virtual const std::string& do_name() const = 0;
+  virtual int64_t do_now() const = 0;
+  virtual bool do_sleep_until(int64_t rig_ns, const std::atomic<bool>& stop) = 0;
+  virtual HostResult<int64_t> do_set(bool active) = 0;
+  virtual HostResult<std::vector<Edge>> do_wait_edges(int64_t timeout_ns) = 0;
 };
 
 class GpioSync {

@@ -22,8 +22,8 @@ namespace tetrapulse::host {
 int64_t monotonic_now_ns();
 int64_t realtime_now_ns();
 // CLOCK_REALTIME - CLOCK_MONOTONIC now, from a monotonic read on either side of a
-// realtime read, the tightest of three (error below half the bracket, well under a
-// microsecond).
+// realtime read, the tightest of three (protocol/clock_bracket.hpp: error below half the
+// bracket, well under a microsecond).
 int64_t realtime_minus_monotonic_ns();
 // A CLOCK_REALTIME kernel timestamp on CLOCK_MONOTONIC.
 int64_t monotonic_from_realtime_ns(int64_t realtime_ns);

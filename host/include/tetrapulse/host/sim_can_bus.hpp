@@ -21,7 +21,7 @@
 
 namespace tetrapulse::host {
 
-class SimCanBus : public CanPort {
+class SimCanBus final : public CanPort {
  public:
   explicit SimCanBus(std::string interface_name = "simcan0", int64_t turnaround_ns = 1'000'000)
       : name_(std::move(interface_name)), turnaround_ns_(turnaround_ns) {}
@@ -36,11 +36,11 @@ class SimCanBus : public CanPort {
   RigClock rig_clock() const { return RigClock(-kStampOffsetNs); }
   size_t frames_sent() const { return frames_sent_; }
 
-  const std::string& interface_name() const override { return name_; }
-  HostResult<uint32_t> send(const protocol::CanFrame& frame) override;
-  HostResult<std::optional<CanPortEvent>> next(int64_t timeout_ns) override;
-
  private:
+  const std::string& do_interface_name() const override { return name_; }
+  HostResult<uint32_t> do_send(const protocol::CanFrame& frame) override;
+  HostResult<std::optional<CanPortEvent>> do_next(int64_t timeout_ns) override;
+
   static constexpr int64_t kStampOffsetNs = int64_t{1} << 60;
   struct Node {
     std::shared_ptr<sim_board::SimBoard> board;

@@ -14,7 +14,7 @@
 
 namespace tetrapulse::host {
 
-class SimSyncLine : public GpioSyncLine {
+class SimSyncLine final : public GpioSyncLine {
  public:
   SimSyncLine(std::string name, int64_t start_ns, std::function<void(int64_t)> run_until)
       : name_(std::move(name)), now_(start_ns), run_until_(std::move(run_until)) {}
@@ -22,14 +22,14 @@ class SimSyncLine : public GpioSyncLine {
   // `connected(t)`: whether the board's sync input is wired at rig time t.
   void attach(std::shared_ptr<sim_board::SimBoard> board, std::function<bool(int64_t)> connected);
 
-  const std::string& name() const override { return name_; }
-  int64_t now() const override { return now_; }
-  bool sleep_until(int64_t rig_ns, const std::atomic<bool>& stop) override;
-  HostResult<int64_t> set(bool active) override;
-  // A trigger line is an output: it never reports edges.
-  HostResult<std::vector<Edge>> wait_edges(int64_t timeout_ns) override;
-
  private:
+  const std::string& do_name() const override { return name_; }
+  int64_t do_now() const override { return now_; }
+  bool do_sleep_until(int64_t rig_ns, const std::atomic<bool>& stop) override;
+  HostResult<int64_t> do_set(bool active) override;
+  // A trigger line is an output: it never reports edges.
+  HostResult<std::vector<Edge>> do_wait_edges(int64_t timeout_ns) override;
+
   struct Input {
     std::shared_ptr<sim_board::SimBoard> board;
     std::function<bool(int64_t)> connected;

@@ -21,15 +21,22 @@ namespace tetrapulse::host {
 // The bulk endpoints as UsbLink uses them; libusb on a real board, a fake in tests.
 class UsbBulkPipe {
  public:
-  virtual ~UsbBulkPipe() = default;
+  virtual ~UsbBulkPipe() = default;  // owned through the base (unique_ptr<UsbBulkPipe>)
   // One bulk OUT transfer; a transfer whose size is a multiple of the endpoint's packet
   // size is followed by a zero-length packet (SPEC.md §5.4).
-  virtual HostResult<void> write_transfer(protocol::ByteView transfer, int timeout_ms) = 0;
+  HostResult<void> write_transfer(protocol::ByteView transfer, int timeout_ms) {
+    return do_write_transfer(transfer, timeout_ms);
+  }
   // One bulk IN transfer; nullopt when none completed within `timeout_ms`. A transfer cut
   // short or overflowing comes as it arrived (the framing then refuses it).
-  virtual HostResult<std::optional<std::vector<uint8_t>>> read_transfer(int timeout_ms) = 0;
+  HostResult<std::optional<std::vector<uint8_t>>> read_transfer(int timeout_ms) { return do_read_transfer(timeout_ms); }
   // The board's PROTOCOL_INFO answer when it was (last) opened, if the pipe has one.
-  virtual std::optional<protocol::UsbProtocolInfo> protocol_info() const { return std::nullopt; }
+  std::optional<protocol::UsbProtocolInfo> protocol_info() const { return do_protocol_info(); }
+
+ private:
+  virtual HostResult<void> do_write_transfer(protocol::ByteView transfer, int timeout_ms) = 0;
+  virtual HostResult<std::optional<std::vector<uint8_t>>> do_read_transfer(int timeout_ms) = 0;
+  virtual std::optional<protocol::UsbProtocolInfo> do_protocol_info() const { return std::nullopt; }
 };
 
 struct UsbLinkOptions {

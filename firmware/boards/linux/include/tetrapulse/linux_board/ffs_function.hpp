@@ -17,8 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "tetrapulse/fw/usb_function.hpp"
-#include "tetrapulse/fw/usb_link.hpp"
+#include "tetrapulse/fw/links/usb_link.hpp"
+#include "tetrapulse/fw/usb/usb_function.hpp"
+#include "tetrapulse/linux_board/board_error.hpp"
 #include "tetrapulse/protocol/usb_descriptors.hpp"
 
 namespace tetrapulse::linux_board {
@@ -40,9 +41,11 @@ struct BulkTransfer {
 class FfsFunction final : public fw::UsbPipe {
  public:
   // Opens `mount_dir`/ep0 of a mounted FunctionFS and writes the blobs; in application
-  // mode opens the bulk endpoints and starts their threads. Null on failure (`error`).
-  static std::unique_ptr<FfsFunction> open(const std::string& mount_dir, const protocol::UsbDeviceParams& params,
-                                           const std::string& serial, std::string* error);
+  // mode opens the bulk endpoints and starts their threads. kUsbGadget naming the endpoint
+  // file that failed.
+  static BoardResult<std::unique_ptr<FfsFunction>> open(const std::string& mount_dir,
+                                                        const protocol::UsbDeviceParams& params,
+                                                        const std::string& serial);
   ~FfsFunction();
   FfsFunction(const FfsFunction&) = delete;
   FfsFunction& operator=(const FfsFunction&) = delete;

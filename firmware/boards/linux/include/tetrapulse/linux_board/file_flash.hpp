@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "tetrapulse/fw/flash.hpp"
-#include "tetrapulse/fw/flash_layout.hpp"
+#include "tetrapulse/fw/storage/flash.hpp"
+#include "tetrapulse/fw/storage/flash_layout.hpp"
+#include "tetrapulse/linux_board/board_error.hpp"
 
 namespace tetrapulse::linux_board {
 
@@ -22,15 +23,17 @@ std::vector<fw::FlashRegion> linux_flash_sectors();
 
 class FileFlash final : public fw::Flash {
  public:
-  // Opens `path`, creating it erased (all 0xFF) at the size of `sectors` when missing.
-  // `created` tells whether it was new. Null on failure (`error` says why).
-  static std::unique_ptr<FileFlash> open(const std::string& path, std::vector<fw::FlashRegion> sectors,
-                                         bool* created, std::string* error);
+  // Opens `path`, creating it erased (all 0xFF) at the size of `sectors` when missing
+  // (created() then says so). kFlash naming the file when it cannot be created or opened, or
+  // its size is not that of `sectors`.
+  static BoardResult<std::unique_ptr<FileFlash>> open(const std::string& path, std::vector<fw::FlashRegion> sectors);
   ~FileFlash();
   FileFlash(const FileFlash&) = delete;
   FileFlash& operator=(const FileFlash&) = delete;
 
   const std::string& path() const { return path_; }
+  // Whether open() made the file (a new board: the factory programs it).
+  bool created() const { return created_; }
   // Writes without the flash rules (factory programming of an erased file).
   protocol::Status load(uint32_t address, protocol::ByteView data);
   // Test hook standing in for a power cut: after `bytes` more programmed bytes or erased
@@ -38,7 +41,7 @@ class FileFlash final : public fw::Flash {
   void cut_power_after(uint64_t bytes) { budget_ = bytes; }
 
  private:
-  FileFlash(std::string path, int fd, std::vector<fw::FlashRegion> sectors);
+  FileFlash(std::string path, int fd, std::vector<fw::FlashRegion> sectors, bool created);
   protocol::Result<fw::FlashRegion> do_sector_at(uint32_t address) const override;
   protocol::Status do_erase_sector(uint32_t sector_address) override;
   protocol::Status do_program(uint32_t address, protocol::ByteView data) override;
@@ -52,6 +55,7 @@ class FileFlash final : public fw::Flash {
   std::vector<fw::FlashRegion> sectors_;
   uint32_t base_;
   uint32_t end_;
+  bool created_;
   uint64_t budget_ = UINT64_MAX;
 };
 

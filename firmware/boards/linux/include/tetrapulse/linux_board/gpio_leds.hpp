@@ -8,14 +8,16 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <gpiod.hpp>
 
-#include "tetrapulse/fw/led_driver.hpp"
-#include "tetrapulse/fw/local_clock.hpp"
+#include "tetrapulse/fw/clock/local_clock.hpp"
+#include "tetrapulse/fw/leds/led_driver.hpp"
+#include "tetrapulse/linux_board/board_error.hpp"
 
 namespace tetrapulse::linux_board {
 
@@ -30,9 +32,9 @@ class GpioLeds final : public fw::LedDriver {
   static constexpr uint32_t kLeadTicks = 300'000;  // 300 us: the main loop's wake-up budget
   static constexpr size_t kQueueDepth = 32;
 
-  // `lines`: up to four "CHIP:LINE" texts, marker 0 first; markers without a line are
-  // played to nowhere. Empty `error` on success.
-  GpioLeds(const fw::LocalClock& clock, const std::vector<std::string>& lines, std::string* error);
+  // `lines`: up to four "CHIP:LINE" texts, marker 0 first, each requested as an output;
+  // markers without a line are played to nowhere. kGpio naming the line that cannot be had.
+  static BoardResult<std::unique_ptr<GpioLeds>> open(const fw::LocalClock& clock, const std::vector<std::string>& lines);
 
   std::optional<fw::Tick> next_due() const;
   // Applies every change due at or before `now`.
@@ -48,6 +50,7 @@ class GpioLeds final : public fw::LedDriver {
   size_t do_queue_depth() const override { return kQueueDepth; }
   uint16_t do_full_scale_ma() const override { return 20; }
 
+  explicit GpioLeds(const fw::LocalClock& clock) : clock_(clock) {}
   void drive(uint8_t index, uint16_t duty);
 
   struct Change {

@@ -6,9 +6,11 @@
 
 #include <gpiod.hpp>
 
+#include "tetrapulse/linux_board/board_error.hpp"
+
 namespace tetrapulse::linux_board {
 
-// The line `text` names, or an unusable line with `error` saying why.
-gpiod::line find_gpio_line(const std::string& text, std::string* error);
+// The line `text` names; kGpio at "GPIO line 'text'" when there is none or its chip cannot be opened.
+BoardResult<gpiod::line> find_gpio_line(const std::string& text);
 
 }  // namespace tetrapulse::linux_board

@@ -3,22 +3,24 @@
 // kernel, time-stamped by the kernel at the interrupt (CLOCK_MONOTONIC, uAPI v1 on Linux
 // >= 5.7), converted to local ticks. That kernel timestamp plays the part of a timer input
 // capture: how late user space reads the event does not matter.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <gpiod.hpp>
 
-#include "tetrapulse/fw/sync_input.hpp"
-#include "tetrapulse/fw/tick.hpp"
+#include "tetrapulse/fw/clock/tick.hpp"
+#include "tetrapulse/fw/sync/sync_input.hpp"
+#include "tetrapulse/linux_board/board_error.hpp"
 #include "tetrapulse/linux_board/monotonic_clock.hpp"
 
 namespace tetrapulse::linux_board {
 
 class GpioSyncInput final : public fw::SyncInput {
  public:
-  // `line`: "CHIP:LINE" or a line name. Empty `error` on success; the line is requested
+  // `line`: "CHIP:LINE" or a line name (kGpio when there is none); the line is requested
   // for events only once configure() enables it.
-  GpioSyncInput(const MonotonicClock& clock, const std::string& line, std::string* error);
+  static BoardResult<std::unique_ptr<GpioSyncInput>> open(const MonotonicClock& clock, const std::string& line);
 
   // The file descriptor to poll while enabled, -1 otherwise.
   int fd() const;
@@ -28,6 +30,8 @@ class GpioSyncInput final : public fw::SyncInput {
   const std::string& problem() const { return problem_; }
 
  private:
+  GpioSyncInput(const MonotonicClock& clock, std::string name, gpiod::line line)
+      : clock_(clock), name_(std::move(name)), line_(std::move(line)) {}
   void do_configure(bool enabled, protocol::GpioEdge edge) override;
 
   const MonotonicClock& clock_;

@@ -7,13 +7,16 @@
 // when missing), lets the core's boot selection pick a slot, and runs either the
 // application (Firmware) or, with no valid image or when asked to stay, the DFU-mode
 // bootloader (DfuDevice + ImageBundleWriter into the inactive slot). It returns when the
-// board resets: the caller re-executes the daemon, so every reset is a fresh start from
-// flash, as on a microcontroller.
+// board resets, with the mode the reset asks for (kBootloader: the bootloader stays): the
+// caller re-executes the daemon, so every reset is a fresh start from flash, as on a
+// microcontroller. Or it returns the error that keeps the board from running.
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "tetrapulse/linux_board/board_error.hpp"
 #include "tetrapulse/linux_board/linux_system.hpp"
+#include "tetrapulse/protocol/request_messages.hpp"
 
 namespace tetrapulse::linux_board {
 
@@ -34,13 +37,7 @@ struct LinuxBoardOptions {
   bool stay_in_bootloader = false;  // this boot follows Reboot{bootloader} or DFU_DETACH
 };
 
-struct BoardExit {
-  bool restart = false;             // re-execute (a reset); false: exit with `status`
-  bool stay_in_bootloader = false;  // the reset asks the bootloader to stay
-  int status = 0;
-};
-
-BoardExit run_board(const LinuxBoardOptions& options);
+BoardResult<protocol::RebootMode> run_board(const LinuxBoardOptions& options);
 
 // One line on stdout, prefixed "tetrapulse-board: [monotonic seconds] " (tests read these).
 void board_log(const std::string& line);

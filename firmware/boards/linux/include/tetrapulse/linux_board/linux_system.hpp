@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "tetrapulse/fw/dfu_target.hpp"
-#include "tetrapulse/fw/system_control.hpp"
+#include "tetrapulse/fw/app/system_control.hpp"
+#include "tetrapulse/fw/usb/dfu_target.hpp"
 
 namespace tetrapulse::linux_board {
 

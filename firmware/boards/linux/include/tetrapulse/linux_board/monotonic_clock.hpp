@@ -9,15 +9,13 @@
 // against rig time can be measured directly (to_monotonic()).
 #include <cstdint>
 
-#include "tetrapulse/fw/local_clock.hpp"
+#include "tetrapulse/fw/clock/local_clock.hpp"
 
 namespace tetrapulse::linux_board {
 
 int64_t monotonic_ns();
-// A CLOCK_REALTIME kernel timestamp (SocketCAN SO_TIMESTAMPNS) on CLOCK_MONOTONIC, through
-// the current difference of the two: stamps are converted microseconds after they are
-// taken, so an NTP step in between is not worth a guard.
-int64_t monotonic_from_realtime_ns(int64_t realtime_ns);
+// CLOCK_REALTIME now, in ns: the clock of SocketCAN's SO_TIMESTAMPNS receive stamps.
+int64_t realtime_ns();
 
 class MonotonicClock final : public fw::LocalClock {
  public:

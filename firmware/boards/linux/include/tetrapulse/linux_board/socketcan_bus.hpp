@@ -8,7 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "tetrapulse/fw/can_link.hpp"
+#include "tetrapulse/fw/links/can_link.hpp"
+#include "tetrapulse/linux_board/board_error.hpp"
 #include "tetrapulse/linux_board/monotonic_clock.hpp"
 
 namespace tetrapulse::linux_board {
@@ -20,9 +21,8 @@ struct ReceivedCanFrame {
 
 class SocketCanBus final : public fw::CanBus {
  public:
-  // Null on failure, `error` naming the interface and the cause.
-  static std::unique_ptr<SocketCanBus> open(const std::string& interface_name, const MonotonicClock& clock,
-                                            std::string* error);
+  // kCan at "CAN interface 'NAME'" when it is missing or its socket cannot be set up.
+  static BoardResult<std::unique_ptr<SocketCanBus>> open(const std::string& interface_name, const MonotonicClock& clock);
   ~SocketCanBus();
   SocketCanBus(const SocketCanBus&) = delete;
   SocketCanBus& operator=(const SocketCanBus&) = delete;

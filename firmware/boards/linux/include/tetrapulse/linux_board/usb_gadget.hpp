@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "tetrapulse/linux_board/board_error.hpp"
 #include "tetrapulse/protocol/usb_descriptors.hpp"
 
 namespace tetrapulse::linux_board {
@@ -24,10 +25,10 @@ struct UsbGadgetSpec {
 class UsbGadget {
  public:
   // Removes what a previous run left of gadget `spec.name` (unbound, unmounted, deleted),
-  // then creates it and mounts FunctionFS. Empty string on success, else why not.
-  std::string create(const UsbGadgetSpec& spec);
+  // then creates it and mounts FunctionFS. kUsbGadget naming the step that failed.
+  BoardResult<void> create(const UsbGadgetSpec& spec);
   // Writes the UDC: the host sees the device. Call once ep0 has the descriptors.
-  std::string bind();
+  BoardResult<void> bind();
   // Unbinds, unmounts and deletes the gadget; quiet about what is already gone.
   void remove();
   const UsbGadgetSpec& spec() const { return spec_; }

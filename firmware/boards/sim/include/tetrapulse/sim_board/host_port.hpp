@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "tetrapulse/fw/message_link.hpp"
+#include "tetrapulse/fw/links/message_link.hpp"
 #include "tetrapulse/protocol/can_transfer_receiver.hpp"
 #include "tetrapulse/protocol/can_transfer_sender.hpp"
 #include "tetrapulse/protocol/message.hpp"

@@ -14,11 +14,11 @@
 #include <optional>
 #include <vector>
 
-#include "tetrapulse/fw/can_link.hpp"
-#include "tetrapulse/fw/firmware.hpp"
-#include "tetrapulse/fw/flash_layout.hpp"
-#include "tetrapulse/fw/uart_link.hpp"
-#include "tetrapulse/fw/usb_link.hpp"
+#include "tetrapulse/fw/app/firmware.hpp"
+#include "tetrapulse/fw/links/can_link.hpp"
+#include "tetrapulse/fw/links/uart_link.hpp"
+#include "tetrapulse/fw/links/usb_link.hpp"
+#include "tetrapulse/fw/storage/flash_layout.hpp"
 #include "tetrapulse/protocol/can_frame.hpp"
 #include "tetrapulse/protocol/response_messages.hpp"
 #include "tetrapulse/sim_board/sim_flash.hpp"

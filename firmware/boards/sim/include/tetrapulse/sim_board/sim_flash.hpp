@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "tetrapulse/fw/flash.hpp"
+#include "tetrapulse/fw/storage/flash.hpp"
 
 namespace tetrapulse::sim_board {
 

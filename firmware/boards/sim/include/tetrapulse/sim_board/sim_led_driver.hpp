@@ -10,8 +10,8 @@
 #include <optional>
 #include <vector>
 
-#include "tetrapulse/fw/led_driver.hpp"
-#include "tetrapulse/fw/local_clock.hpp"
+#include "tetrapulse/fw/clock/local_clock.hpp"
+#include "tetrapulse/fw/leds/led_driver.hpp"
 
 namespace tetrapulse::sim_board {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "tetrapulse/fw/tick.hpp"
+#include "tetrapulse/fw/clock/tick.hpp"
 
 namespace tetrapulse::sim_board {
 

@@ -2,7 +2,7 @@
 // What this board is: the facts images are checked against and Info reports.
 #include <cstdint>
 
-#include "tetrapulse/fw/flash_layout.hpp"
+#include "tetrapulse/fw/storage/flash_layout.hpp"
 #include "tetrapulse/protocol/usb_descriptors.hpp"
 #include "tetrapulse/protocol/version.hpp"
 #include "tetrapulse/stm32f405/memory_map.hpp"

@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "tetrapulse/fw/can_link.hpp"
-#include "tetrapulse/fw/spsc_queue.hpp"
+#include "tetrapulse/fw/app/spsc_queue.hpp"
+#include "tetrapulse/fw/links/can_link.hpp"
 #include "tetrapulse/stm32f405/local_timer.hpp"
 
 namespace tetrapulse::stm32f405 {

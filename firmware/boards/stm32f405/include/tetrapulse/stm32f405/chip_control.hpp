@@ -1,7 +1,7 @@
 #pragma once
 // fw::SystemControl for the STM32F405: resets through the bootloader handoff, the chip's
 // unique id, the board revision, the independent watchdog.
-#include "tetrapulse/fw/system_control.hpp"
+#include "tetrapulse/fw/app/system_control.hpp"
 #include "tetrapulse/stm32f405/system.hpp"
 #include "tetrapulse/stm32f405/usart1.hpp"
 

@@ -5,7 +5,7 @@
 //
 // The CPU stalls on flash fetches while an erase runs (a 128 KB sector takes 1-2 s), so
 // the watchdog timeout must exceed that (main.cpp starts it with 4 s).
-#include "tetrapulse/fw/flash.hpp"
+#include "tetrapulse/fw/storage/flash.hpp"
 
 namespace tetrapulse::stm32f405 {
 

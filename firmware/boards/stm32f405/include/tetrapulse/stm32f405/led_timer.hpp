@@ -23,7 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "tetrapulse/fw/led_driver.hpp"
+#include "tetrapulse/fw/leds/led_driver.hpp"
 #include "tetrapulse/stm32f405/local_timer.hpp"
 
 namespace tetrapulse::stm32f405 {

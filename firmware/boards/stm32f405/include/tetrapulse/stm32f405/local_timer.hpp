@@ -10,7 +10,7 @@
 //        to the tick and extended to 64 bits in the interrupt.
 #include <cstdint>
 
-#include "tetrapulse/fw/local_clock.hpp"
+#include "tetrapulse/fw/clock/local_clock.hpp"
 
 namespace tetrapulse::stm32f405 {
 

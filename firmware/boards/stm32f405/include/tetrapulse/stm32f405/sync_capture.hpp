@@ -1,8 +1,8 @@
 #pragma once
 // fw::SyncInput on TIM2_CH2 (local_timer.hpp): edges captured in hardware, their ticks
 // queued by the timer interrupt for the main loop.
-#include "tetrapulse/fw/spsc_queue.hpp"
-#include "tetrapulse/fw/sync_input.hpp"
+#include "tetrapulse/fw/app/spsc_queue.hpp"
+#include "tetrapulse/fw/sync/sync_input.hpp"
 #include "tetrapulse/stm32f405/local_timer.hpp"
 
 namespace tetrapulse::stm32f405 {

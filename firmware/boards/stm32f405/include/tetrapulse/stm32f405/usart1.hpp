@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "tetrapulse/fw/spsc_queue.hpp"
-#include "tetrapulse/fw/uart_link.hpp"
+#include "tetrapulse/fw/app/spsc_queue.hpp"
+#include "tetrapulse/fw/links/uart_link.hpp"
 
 namespace tetrapulse::stm32f405 {
 

@@ -22,12 +22,12 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "tetrapulse/fw/local_clock.hpp"
-#include "tetrapulse/fw/usb_control.hpp"
-#include "tetrapulse/fw/usb_device_controller.hpp"
-#include "tetrapulse/fw/usb_endpoint_zero.hpp"
-#include "tetrapulse/fw/usb_link.hpp"
-#include "tetrapulse/fw/usb_message_function.hpp"
+#include "tetrapulse/fw/clock/local_clock.hpp"
+#include "tetrapulse/fw/links/usb_link.hpp"
+#include "tetrapulse/fw/usb/usb_control.hpp"
+#include "tetrapulse/fw/usb/usb_device_controller.hpp"
+#include "tetrapulse/fw/usb/usb_endpoint_zero.hpp"
+#include "tetrapulse/fw/usb/usb_message_function.hpp"
 #include "tetrapulse/stm32f405/usb_fifo_plan.hpp"
 
 namespace tetrapulse::stm32f405 {
