@@ -87,7 +87,10 @@ void BlobTracker::add_detection(BlobTrack* track, const ExposureStamp& frame, co
   s.intensity = blob.intensity;
   s.saturated = blob.saturated;
   s.detected = true;
-  s.measured = true;
+  s.merged = blob.merged;
+  s.merge_group = blob.merge_group;
+  s.merge_parts = blob.merge_parts;
+  s.measured = !blob.merged;  // its light is partly another marker's: no bit from it
   s.centroid = blob.centroid;
   track->history_.push(s);
 }

@@ -46,6 +46,9 @@ struct TrackSample {
   bool detected = false;  // a blob was found
   bool measured = false;  // `intensity` is a measurement (a blob, or an absent ROI's aperture)
   bool saturated = false; // some pixel of it clipped: `intensity` is compressed (a lower bound)
+  bool merged = false;    // a part of a blob split between predicted markers (Blob::merged): not measured
+  int merge_group = 0;    // merged: Blob::merge_group and merge_parts
+  int merge_parts = 0;
   // The blob's centroid, or the position predicted for this frame when no blob
   // was found; pixels.
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
