@@ -9,6 +9,7 @@ const char* blob_origin_name(BlobOrigin origin) {
     case BlobOrigin::kErosionSplit: return "erosion_split";
     case BlobOrigin::kCircleFit: return "circle_fit";
     case BlobOrigin::kMerged: return "merged";
+    case BlobOrigin::kPredictionSplit: return "prediction_split";
   }
   return "?";
 }

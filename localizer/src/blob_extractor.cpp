@@ -234,6 +234,7 @@ class ExtractorScratch {
   std::vector<cv::Rect> groups;
   std::vector<int> members;  // ROIs of the group being processed
   std::vector<size_t> group_blobs;
+  std::vector<Eigen::Vector2d> centres;  // of the group's ROIs that split merged blobs
   unsigned touched = 0;  // touch_rows' sums, kept so that its loads are not left out
 };
 
@@ -293,6 +294,10 @@ tl::expected<void, BlobInputError> BlobExtractor::extract(const cv::Mat& image, 
     pass.find(w, w.levels.f1);
     const int found = s.claimed(rois);
     if (found < int(s.members.size())) pass.recover(w, int(s.members.size()) - found);
+    s.centres.clear();
+    for (int i : s.members)
+      if (rois[size_t(i)].splits) s.centres.push_back(rois[size_t(i)].center);
+    pass.split_by_prediction(w, s.centres);
     s.answer(rois, w, out);
     pass.list_rejected(out);
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tetrapulse::blob_internal {
 namespace {
@@ -33,6 +34,62 @@ int label_parts(const std::vector<uint8_t>& mask, int w, int h, std::vector<int3
 }
 
 }  // namespace
+
+int BlobRecovery::split_by_prediction(const cv::Mat& work, cv::Rect window, const Levels& levels,
+                                      RegionGrower* grower, size_t index, const std::vector<Eigen::Vector2d>& centres,
+                                      std::vector<Region>* regions) {
+  const Region original = (*regions)[index];
+  if (centres.size() < 2 || original.end <= original.begin) return 0;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& c : centres) mean += c;
+  const Eigen::Vector2d shift = original.blob.centroid - mean / double(centres.size());
+  const int width = grower->width();
+  const size_t first = regions->size();
+  parts_.assign(size_t(original.end - original.begin), 0);
+  for (int i = original.begin; i < original.end; ++i) {
+    const int p = grower->pixels()[size_t(i)], y = p / width, x = p - y * width;
+    int nearest = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < centres.size(); ++k) {
+      const double d = (Eigen::Vector2d(x, y) - centres[k] - shift).squaredNorm();
+      if (d < best) best = d, nearest = int(k);
+    }
+    parts_[size_t(i - original.begin)] = nearest;
+  }
+  for (size_t k = 0; k < centres.size(); ++k) {
+    Region r;
+    r.label = grower->new_label();
+    r.begin = static_cast<int>(grower->pixels().size());
+    for (int i = original.begin; i < original.end; ++i) {
+      if (parts_[size_t(i - original.begin)] != int(k)) continue;
+      const int p = grower->pixels()[size_t(i)], y = p / width, x = p - y * width;
+      grower->pixels().push_back(p);
+      r.box |= cv::Rect(x, y, 1, 1);
+    }
+    r.end = static_cast<int>(grower->pixels().size());
+    if (r.end > r.begin) regions->push_back(r);
+  }
+  // Labelled only once all are listed, so that each part's ring leaves out the others.
+  for (size_t k = first; k < regions->size(); ++k)
+    for (int i = (*regions)[k].begin; i < (*regions)[k].end; ++i)
+      grower->set_label(grower->pixels()[size_t(i)], (*regions)[k].label);
+  for (size_t k = first; k < regions->size(); ++k) {
+    Region& r = (*regions)[k];
+    grower->measure(work, window, levels, &r);
+    r.blob.origin = BlobOrigin::kPredictionSplit;
+    r.blob.merged = true;
+    r.blob.merge_group = original.label;
+    r.blob.merge_parts = static_cast<int>(regions->size() - first);
+    r.accepted = true;
+  }
+  Region& split = (*regions)[index];
+  split.accepted = false;
+  split.rejected = true;
+  split.recovered = true;
+  split.reason = RejectReason::kMerged;
+  split.reason_value = double(centres.size());
+  return static_cast<int>(regions->size() - first);
+}
 
 int BlobRecovery::split_by_erosion(const cv::Mat& work, cv::Rect window, const Levels& levels,
                                    const BlobExtractorConfig& config, RegionGrower* grower, size_t index,

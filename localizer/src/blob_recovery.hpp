@@ -23,6 +23,15 @@ class BlobRecovery {
   int split_by_erosion(const cv::Mat& work, cv::Rect window, const Levels& levels, const BlobExtractorConfig& config,
                        RegionGrower* grower, size_t index, std::vector<Region>* regions);
 
+  // Splits regions[index] between `centres` (two or more predicted marker
+  // pixels inside it): each pixel goes to the nearest centre once every centre
+  // is shifted by the region's weighted centroid minus the centres' mean (the
+  // prediction's common error). The parts are measured and appended, accepted,
+  // origin kPredictionSplit, merged; the original is marked recovered. Parts
+  // with no pixel are not appended. Returns how many were.
+  int split_by_prediction(const cv::Mat& work, cv::Rect window, const Levels& levels, RegionGrower* grower,
+                          size_t index, const std::vector<Eigen::Vector2d>& centres, std::vector<Region>* regions);
+
   // Fits a circle to the rim of `region`: the points where the value crosses
   // half the region's peak between one of its pixels and a 4-neighbour
   // (linear interpolation; a disc's edge or a spot's half-maximum contour),

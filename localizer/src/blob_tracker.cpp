@@ -85,13 +85,18 @@ void BlobTracker::add_detection(BlobTrack* track, const ExposureStamp& frame, co
   s.timestamp_ns = frame.timestamp_ns;
   s.exposure_ns = frame.exposure_ns;
   s.intensity = blob.intensity;
+  s.saturated = blob.saturated;
   s.detected = true;
-  s.measured = true;
+  s.merged = blob.merged;
+  s.merge_group = blob.merge_group;
+  s.merge_parts = blob.merge_parts;
+  s.measured = !blob.merged;  // its light is partly another marker's: no bit from it
   s.centroid = blob.centroid;
   track->history_.push(s);
 }
 
-void BlobTracker::add_absence(BlobTrack* track, const ExposureStamp& frame, std::optional<double> intensity) {
+void BlobTracker::add_absence(BlobTrack* track, const ExposureStamp& frame, std::optional<double> intensity,
+                              bool saturated) {
   ++track->missed_;
   track->updated_ = true;
   TrackSample s;
@@ -100,6 +105,7 @@ void BlobTracker::add_absence(BlobTrack* track, const ExposureStamp& frame, std:
   s.exposure_ns = frame.exposure_ns;
   s.intensity = intensity.value_or(0.0);
   s.measured = intensity.has_value();
+  s.saturated = saturated;
   s.centroid = track->predict(frame.middle_ns());
   track->history_.push(s);
 }
@@ -115,7 +121,7 @@ void BlobTracker::update(const ExposureStamp& frame, const BlobExtraction& extra
     if (m.status == RoiStatus::kDetected) {
       add_detection(&*it, frame, m.blob);
     } else if (m.status == RoiStatus::kAbsent) {
-      add_absence(&*it, frame, m.intensity);
+      add_absence(&*it, frame, m.intensity, m.aperture_saturated);
     }
   }
 

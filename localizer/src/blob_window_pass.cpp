@@ -1,6 +1,7 @@
 #include "blob_window_pass.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace tetrapulse::blob_internal {
@@ -104,6 +105,29 @@ void WindowPass::prune(int expected) {
       order.erase(order.begin() + std::ptrdiff_t(far));
     }
   }
+}
+
+void WindowPass::split_by_prediction(const Window& w, const std::vector<Eigen::Vector2d>& centres) {
+  if (centres.size() < 2) return;
+  held_.assign(regions_.size(), {});
+  const int width = grower_.width();
+  for (const Eigen::Vector2d& c : centres) {
+    const int x = static_cast<int>(std::lround(c.x())), y = static_cast<int>(std::lround(c.y()));
+    if (!w.rect.contains(cv::Point(x, y))) continue;
+    const int32_t label = grower_.label(y * width + x);
+    if (label == 0) continue;
+    for (size_t k = 0; k < regions_.size(); ++k) {
+      const Region& r = regions_[k];
+      if (r.label != label || r.quiet || !(r.accepted || (r.rejected && !r.recovered && reason_is_shape(r.reason))))
+        continue;
+      bool distinct = true;  // two ROIs of one marker are one centre
+      for (const Eigen::Vector2d& o : held_[k]) distinct = distinct && (o - c).norm() > 1.5;
+      if (distinct) held_[k].push_back(c);
+    }
+  }
+  const size_t n = regions_.size();
+  for (size_t k = 0; k < n; ++k)
+    if (held_[k].size() >= 2) recovery_.split_by_prediction(*w.work, w.rect, w.levels, &grower_, k, held_[k], &regions_);
 }
 
 void WindowPass::recover(const Window& w, int missing) {

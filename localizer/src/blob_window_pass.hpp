@@ -43,6 +43,9 @@ class WindowPass {
   // Fewer blobs than expected: the cascade, cheapest first (dim markers,
   // erosion, circle fit); stops once `missing` are found.
   void recover(const Window& w, int missing);
+  // Regions that hold two or more of `centres` (predicted marker pixels) are
+  // split between them (BlobRecovery::split_by_prediction).
+  void split_by_prediction(const Window& w, const std::vector<Eigen::Vector2d>& centres);
   // Appends the rejected regions (up to config.max_rejected_kept in all).
   void list_rejected(BlobExtraction* out) const;
 
@@ -62,6 +65,7 @@ class WindowPass {
   std::vector<Region> regions_;
   std::vector<size_t> order_;
   std::vector<double> nearest_;
+  std::vector<std::vector<Eigen::Vector2d>> held_;  // centres each region holds
 };
 
 }  // namespace tetrapulse::blob_internal

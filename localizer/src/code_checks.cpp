@@ -20,6 +20,12 @@ bool CodeChecks::has_binary_codes(size_t t) const {
   return false;
 }
 
+bool CodeChecks::spans_code(const BlobTrack& track, const Code& code, size_t from) const {
+  const auto& h = track.history();
+  return h.size() > from &&
+         h.newest().timestamp_ns - h[from].timestamp_ns >= int64_t(code.length - 1) * targets_.timebase.bit_period_ns;
+}
+
 void CodeChecks::refit_clock(const BlobTracker& tracker, const CodeReading& reading, size_t t, int64_t mid_ns,
                              TrackedTarget* tt) const {
   const Target& target = targets_.targets[t];
@@ -55,13 +61,20 @@ void CodeChecks::check(const BlobTracker& tracker, CodeReading& reading, int64_t
         if ((frame + track->id()) % std::max(1, options_.frequency_check_frames) != 0) continue;
         const FrequencyDecision* d = reading.frequency_decision(track->id());
         if (d && d->decided() && (d->kind != FrequencyDecision::Kind::kFrequency || d->code != expected))
-          tt.track_of[size_t(m)] = -1;
+          tt.release(m);
+        else if (d && d->kind == FrequencyDecision::Kind::kFrequency)
+          tt.confirmed[size_t(m)] = true;
         continue;
       }
-      const CodeMatch match = match_code(track->history(), reading.bits(track->id()),
-                                         CodeReading::first_of_newest(*track, options_.verify_samples),
-                                         tt.clock.fitted(), *marker.code);
-      if (match.mismatches > options_.verify_max_errors) tt.track_of[size_t(m)] = -1;
+      const size_t from = CodeReading::first_of_newest(*track, options_.verify_samples);
+      const CodeMatch match = match_code(track->history(), reading.bits(track->id()), from, tt.clock.fitted(),
+                                         *marker.code);
+      if (match.mismatches > options_.verify_max_errors) {
+        tt.release(m);
+      } else if (!tt.confirmed[size_t(m)] && match.counted >= int(marker.code->length) &&
+                 match.mismatches <= match.counted / 16 && spans_code(*track, *marker.code, from)) {
+        tt.confirmed[size_t(m)] = true;  // a whole code cycle read: another code would differ somewhere
+      }
     }
   }
 }

@@ -3,7 +3,9 @@
 // being checked against their markers' codes.
 //   - binary codes: the newest verify_samples samples under the target's clock
 //     may hold at most verify_max_errors read errors; a track with more leaves
-//     its marker. Free-running boards first have their clock's origin re-fitted
+//     its marker. A track that joined its marker after the identification is
+//     confirmed once a whole code length of read bits matches (at most one
+//     error in 16). Free-running boards first have their clock's origin re-fitted
 //     (target_clock.hpp) once per code length, over the tracks' newest `samples`.
 //   - frequency codes are judged over the whole window, so now and then
 //     (every frequency_check_frames frames, staggered by track): a track that now
@@ -36,6 +38,8 @@ class CodeChecks {
   const std::array<int, 4>& frequency_of(size_t t) const { return frequency_of_[t]; }
 
  private:
+  // Whether samples [from, end) of the track span a whole cycle of `code`.
+  bool spans_code(const BlobTrack& track, const Code& code, size_t from) const;
   void refit_clock(const BlobTracker& tracker, const CodeReading& reading, size_t t, int64_t mid_ns,
                    TrackedTarget* tt) const;
 

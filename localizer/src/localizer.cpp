@@ -139,8 +139,8 @@ tl::expected<std::vector<TargetPose>, LocalizerError> Localizer::State::process(
   std::vector<TargetPose> out;
   for (size_t t = 0; t < roster.size(); ++t) {
     if (!roster[t].identified) continue;
-    if (auto p = solve_target_pose(camera, targets.targets[t], t, tracker, stamp, frame_period_ns, poses, &roster))
-      out.push_back(*p);
+    const PoseFrame frame{camera, targets, tracker, stamp, frame_period_ns};
+    if (auto p = solve_target_pose(frame, t, checks.frequency_of(t), poses, &roster)) out.push_back(*p);
   }
   previous_start = start;
   ++frames;

@@ -20,9 +20,13 @@ double pose_distance(const Pose& a, const Pose& b) {
 namespace {
 
 std::optional<MarkerPose> refine(const CameraModel& camera, const Target& target, const std::vector<SeenMarker>& seen,
-                                 const Pose& initial, PoseStatus status, const MarkerPoseOptions& options) {
+                                 const Pose& initial, PoseStatus status, const MarkerPoseOptions& options,
+                                 const std::vector<MergedMarkers>& merged = {}) {
   std::vector<MarkerObservation> observations;
   for (const SeenMarker& s : seen) observations.push_back({target.markers[size_t(s.marker)].position_m, s.pixel});
+  for (const MergedMarkers& m : merged)
+    observations.push_back({target.markers[size_t(m.marker)].position_m, m.pixel,
+                            target.markers[size_t(m.partner)].position_m, m.partner_share});
   RefinementOptions refinement;
   refinement.marker_diameter_m = target.marker_diameter_m;
   refinement.sphere_centroid = options.sphere_centroid;
@@ -33,6 +37,7 @@ std::optional<MarkerPose> refine(const CameraModel& camera, const Target& target
   out.pose = refined->pose;
   out.status = status;
   for (const SeenMarker& s : seen) out.used.push_back(s.marker);
+  for (const MergedMarkers& m : merged) out.used.push_back(m.marker), out.used.push_back(m.partner);
   out.rms_px = refined->rms_px;
   out.covariance = refined->covariance;
   out.has_covariance = refined->has_covariance;
@@ -52,11 +57,11 @@ int clear_minimum(const std::array<double, 4>& score, int n, double ratio, doubl
   return best;
 }
 
-// Three markers: the P3P pose that the fourth marker's hint or the predicted pose
-// picks out.
+// Three markers: the P3P root that the fourth marker's hint, its light or the
+// predicted pose picks out (marker_pose.hpp).
 std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& target,
                                      const std::vector<SeenMarker>& seen, const std::optional<Pose>& prediction,
-                                     const std::vector<HintedMarker>& hints, const MarkerPoseOptions& options) {
+                                     const MarkerEvidence& evidence, const MarkerPoseOptions& options) {
   Bearing3 x;
   Point3x3 X;
   for (size_t i = 0; i < 3; ++i) {
@@ -68,32 +73,60 @@ std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& ta
   int chosen = -1;
   // The hint: the worst of the hinted markers' distances from their hints, in units
   // of their uncertainty.
+  const std::vector<HintedMarker>& hints = evidence.hints;
   if (!hints.empty()) {
     std::array<double, 4> off{};
-    std::array<double, 4> off_px{};
     for (int k = 0; k < n; ++k) {
-      double worst = 0, worst_px = 0;
+      double worst = 0;
       for (const HintedMarker& h : hints) {
         Eigen::Vector2d px;
         const double d = camera.project(poses[size_t(k)].apply(target.markers[size_t(h.marker)].position_m), &px)
                              ? (px - h.pixel).norm()
                              : std::numeric_limits<double>::infinity();
         worst = std::max(worst, d / std::max(h.uncertainty_px, 0.5));
-        worst_px = std::max(worst_px, d);
       }
       off[size_t(k)] = worst;
-      off_px[size_t(k)] = worst_px;
     }
     const int best = clear_minimum(off, n, 3.0, 4.0 / std::max(hints.front().uncertainty_px, 0.5));
     if (best >= 0 && off[size_t(best)] <= 3.0) chosen = best;
   }
-  if (chosen < 0 && prediction) {
-    std::array<double, 4> d{};
+  std::array<double, 4> d{};
+  d.fill(std::numeric_limits<double>::infinity());
+  if (prediction)
     for (int k = 0; k < n; ++k) d[size_t(k)] = pose_distance(poses[size_t(k)], *prediction);
-    const int best = clear_minimum(d, n, 2.0, 0.0);
-    if (best >= 0 && d[size_t(best)] <= options.max_prediction_distance) chosen = best;
+  const auto near_prediction = [&](int k) { return d[size_t(k)] <= options.max_prediction_distance; };
+  // The light: roots near the prediction whose fourth marker, lit by its code, falls on a blob.
+  std::array<int, 4> light_of{-1, -1, -1, -1};  // the blob each root's lit fourth marker falls on
+  int explained = 0, explained_root = -1;
+  int lit_marker = -1;
+  for (const MissingMarker& m : evidence.missing)
+    if (m.light == MarkerLight::kLit) lit_marker = m.marker;
+  if (lit_marker >= 0 && prediction) {
+    for (int k = 0; k < n; ++k) {
+      if (!near_prediction(k)) continue;
+      const Eigen::Vector3d p = poses[size_t(k)].apply(target.markers[size_t(lit_marker)].position_m);
+      Eigen::Vector2d px;
+      if (!camera.project(p, &px)) continue;
+      const double reach = std::max(3.0, camera.info().fx * target.marker_diameter_m / 2 / p.norm() + 1.0);
+      for (size_t b = 0; b < evidence.lights.size(); ++b)
+        if ((evidence.lights[b] - px).norm() <= reach) light_of[size_t(k)] = int(b);
+      if (light_of[size_t(k)] >= 0) ++explained, explained_root = k;
+    }
   }
-  if (chosen < 0) return std::nullopt;
+  if (chosen < 0 && explained == 1) {
+    chosen = explained_root;
+    // The blob is the fourth marker when the four fit one pose.
+    std::vector<SeenMarker> four = seen;
+    four.push_back(SeenMarker{lit_marker, evidence.lights[size_t(light_of[size_t(chosen)])]});
+    auto out = refine(camera, target, four, poses[size_t(chosen)], PoseStatus::kAllMarkers, options);
+    if (out && out->rms_px <= options.max_rms_px) return out;
+  }
+  if (chosen < 0 && prediction) {
+    const int best = clear_minimum(d, n, 2.0, 0.0);
+    // A farther root near the prediction that the fourth marker's light explains: ambiguous.
+    if (best >= 0 && near_prediction(best) && !(explained > 0 && light_of[size_t(best)] < 0)) chosen = best;
+  }
+  if (chosen < 0 || (prediction && !near_prediction(chosen))) return std::nullopt;
   auto out = refine(camera, target, seen, poses[size_t(chosen)], PoseStatus::kThreeMarkers, options);
   if (!out || !(out->rms_px <= options.max_rms_px)) return std::nullopt;
   return out;
@@ -122,10 +155,42 @@ std::optional<MarkerPose> from_four(const CameraModel& camera, const Target& tar
 
 }  // namespace
 
+namespace {
+
+std::optional<MarkerPose> from_seen(const CameraModel& camera, const Target& target,
+                                    const std::vector<SeenMarker>& seen, const std::optional<Pose>& prediction,
+                                    const MarkerPoseOptions& options, const MarkerEvidence& evidence);
+
+}  // namespace
+
 std::optional<MarkerPose> solve_marker_pose(const CameraModel& camera, const Target& target,
                                             const std::vector<SeenMarker>& seen, const std::optional<Pose>& prediction,
-                                            const MarkerPoseOptions& options, const std::vector<HintedMarker>& hints) {
-  if (seen.size() == 3) return from_three(camera, target, seen, prediction, hints, options);
+                                            const MarkerPoseOptions& options, const MarkerEvidence& evidence) {
+  if (evidence.merged.empty()) return from_seen(camera, target, seen, prediction, options, evidence);
+  if (seen.size() < 3) {
+    if (seen.size() < 2 || !prediction) return std::nullopt;
+    auto out = refine(camera, target, seen, *prediction, PoseStatus::kThreeMarkers, options, evidence.merged);
+    return out && out->rms_px <= options.max_rms_px ? out : std::nullopt;
+  }
+  auto pose = from_seen(camera, target, seen, prediction, options, evidence);
+  if (!pose) return pose;
+  std::vector<SeenMarker> used;
+  for (const SeenMarker& s : seen)
+    if (std::find(pose->used.begin(), pose->used.end(), s.marker) != pose->used.end()) used.push_back(s);
+  auto joined = refine(camera, target, used, pose->pose, pose->status, options, evidence.merged);
+  if (joined && joined->rms_px <= options.max_rms_px) {
+    joined->outlier = pose->outlier;
+    return joined;
+  }
+  return pose;
+}
+
+namespace {
+
+std::optional<MarkerPose> from_seen(const CameraModel& camera, const Target& target,
+                                    const std::vector<SeenMarker>& seen, const std::optional<Pose>& prediction,
+                                    const MarkerPoseOptions& options, const MarkerEvidence& evidence) {
+  if (seen.size() == 3) return from_three(camera, target, seen, prediction, evidence, options);
   if (seen.size() != 4) return std::nullopt;
   auto four = from_four(camera, target, seen, prediction, options);
   if (four && four->rms_px <= options.max_rms_px) return four;
@@ -138,7 +203,7 @@ std::optional<MarkerPose> solve_marker_pose(const CameraModel& camera, const Tar
     std::vector<SeenMarker> three;
     for (size_t i = 0; i < 4; ++i)
       if (i != k) three.push_back(seen[i]);
-    auto candidate = from_three(camera, target, three, prediction, {}, options);
+    auto candidate = from_three(camera, target, three, prediction, MarkerEvidence{}, options);
     if (!candidate) continue;
     const double d = pose_distance(candidate->pose, *prediction);
     if (d < best_d) {
@@ -149,5 +214,7 @@ std::optional<MarkerPose> solve_marker_pose(const CameraModel& camera, const Tar
   }
   return best;
 }
+
+}  // namespace
 
 }  // namespace tetrapulse

@@ -27,7 +27,7 @@ std::vector<size_t> NewTargets::identify(const BlobTracker& tracker, CodeReading
   }
   if (candidates_.size() < 4) return found;
   for (const Identification& id : identifier_.identify(candidates_, wanted)) {
-    (*roster)[id.target].identify(id.track_of, id.clock, id.pose, stamp.middle_ns());
+    (*roster)[id.target].identify(id.track_of, id.clock, id.pose, id.rms_px, stamp.middle_ns());
     found.push_back(id.target);
   }
   return found;

@@ -36,7 +36,8 @@ class ReprojectionProblem {
         markers_(markers),
         huber_(options.huber_px),
         radius_(options.sphere_centroid && options.marker_diameter_m > 0 ? options.marker_diameter_m / 2 : 0),
-        offsets_(markers.size(), Eigen::Vector2d::Zero()) {}
+        offsets_(markers.size(), Eigen::Vector2d::Zero()),
+        partner_offsets_(markers.size(), Eigen::Vector2d::Zero()) {}
 
   bool models_silhouettes() const { return radius_ > 0; }
 
@@ -45,14 +46,20 @@ class ReprojectionProblem {
   int update_offsets(const Pose& pose, double* largest_change) {
     *largest_change = 0;
     for (size_t i = 0; i < markers_.size(); ++i) {
-      const Eigen::Vector3d p = pose.apply(markers_[i].position_m);
-      Eigen::Vector2d centre, centroid;
-      if (!camera_.project(p, &centre) || !sphere_image_centroid(camera_, p, radius_, &centroid)) return int(i);
-      const Eigen::Vector2d offset = centroid - centre;
-      *largest_change = std::max(*largest_change, (offset - offsets_[i]).norm());
-      offsets_[i] = offset;
+      if (!update_offset(pose.apply(markers_[i].position_m), &offsets_[i], largest_change)) return int(i);
+      if (markers_[i].partner_share > 0 &&
+          !update_offset(pose.apply(markers_[i].partner_m), &partner_offsets_[i], largest_change))
+        return int(i);
     }
     return -1;
+  }
+
+  bool update_offset(const Eigen::Vector3d& p, Eigen::Vector2d* offset, double* largest_change) const {
+    Eigen::Vector2d centre, centroid;
+    if (!camera_.project(p, &centre) || !sphere_image_centroid(camera_, p, radius_, &centroid)) return false;
+    *largest_change = std::max(*largest_change, (centroid - centre - *offset).norm());
+    *offset = centroid - centre;
+    return true;
   }
 
   // At `pose`: the robust cost and the plain squared error; with H and g the
@@ -65,11 +72,32 @@ class ReprojectionProblem {
     if (H) H->setZero(), g->setZero();
     if (W) W->setZero();
     for (size_t i = 0; i < markers_.size(); ++i) {
-      const Eigen::Vector3d rotated = pose.R * markers_[i].position_m;
+      const MarkerObservation& m = markers_[i];
+      const Eigen::Vector3d rotated = pose.R * m.position_m;
       Eigen::Vector2d h;
       Eigen::Matrix<double, 2, 3> Jp;
       if (!camera_.project(rotated + pose.t, &h, H ? &Jp : nullptr)) return int(i);
-      const Eigen::Vector2d r = h + offsets_[i] - markers_[i].pixel;
+      h += offsets_[i];
+      Eigen::Matrix<double, 2, 6> J;
+      if (H) {
+        J.leftCols<3>() = -Jp * skew(rotated);  // d p / d w = -[R X]x
+        J.rightCols<3>() = Jp;                  // d p / d v = I
+      }
+      if (m.partner_share > 0) {
+        const double s = m.partner_share;
+        const Eigen::Vector3d partner = pose.R * m.partner_m;
+        Eigen::Vector2d h2;
+        Eigen::Matrix<double, 2, 3> Jp2;
+        if (!camera_.project(partner + pose.t, &h2, H ? &Jp2 : nullptr)) return int(i);
+        h = (1 - s) * h + s * (h2 + partner_offsets_[i]);
+        if (H) {
+          Eigen::Matrix<double, 2, 6> J2;
+          J2.leftCols<3>() = -Jp2 * skew(partner);
+          J2.rightCols<3>() = Jp2;
+          J = (1 - s) * J + s * J2;
+        }
+      }
+      const Eigen::Vector2d r = h - m.pixel;
       const double s2 = r.squaredNorm();
       *squared += s2;
       // Loss rho(s^2): s^2, or Huber's in its smooth form 2 k^2 (sqrt(1 + s^2/k^2) - 1),
@@ -85,9 +113,6 @@ class ReprojectionProblem {
         *cost += s2;
       }
       if (!H) continue;
-      Eigen::Matrix<double, 2, 6> J;
-      J.leftCols<3>() = -Jp * skew(rotated);  // d p / d w = -[R X]x
-      J.rightCols<3>() = Jp;                  // d p / d v = I
       const Matrix6 JtJ = J.transpose() * J;
       // Gauss-Newton for a robust loss (Triggs et al.): H += rho' J^T (I - radial r r^T/|r|^2) J.
       *H += weight * JtJ;
@@ -107,6 +132,7 @@ class ReprojectionProblem {
   double huber_;
   double radius_;
   std::vector<Eigen::Vector2d> offsets_;
+  std::vector<Eigen::Vector2d> partner_offsets_;
 };
 
 Pose step(const Pose& pose, const Vector6& delta) {

@@ -27,6 +27,7 @@ void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const Cam
         }
         roi.center = px;
         roi.radius = radius;
+        roi.splits = true;
         plan->gates.push_back(TrackGate{track.id(), px, roi.radius});
       }
     }
@@ -43,6 +44,7 @@ void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const Cam
       if (!roster.project_marker(t, m, &px, &radius) || !camera.in_image(px, -radius)) continue;
       BlobRoi roi;
       roi.tag = -1;
+      roi.splits = true;
       roi.center = px;
       roi.radius = roster.roi_radius(t, mid_ns, frame_period_ns) + 2;
       roi.aperture_radius = std::max(3.0, radius + 2.5);

@@ -4,57 +4,168 @@
 #include <vector>
 
 #include "roi_planner.hpp"
+#include "tetrapulse/localizer/code_clock.hpp"
 
 namespace tetrapulse::localizer_internal {
 namespace {
 
-// The markers seen this frame, and hints for those dark now whose tracks were seen lately.
-void markers_of(const TrackedTarget& tt, const BlobTracker& tracker, const ExposureStamp& stamp,
-                std::vector<SeenMarker>* seen, std::vector<HintedMarker>* hints) {
+constexpr double kMinRmsGatePx = 0.2;         // the fit a pose needs, at the least
+constexpr double kMinRotationGate = 0.04;     // rad
+constexpr double kMinTranslationGate = 0.03;  // of the distance
+
+struct FrameMarkers {
+  std::vector<SeenMarker> confirmed, unconfirmed;
+  std::vector<std::pair<int, TrackSample>> merged;  // seen markers whose blob was split between predicted markers
+  MarkerEvidence evidence;  // hints of confirmed markers dark now, missing markers, lights
+};
+
+// What the marker's code says of it in this exposure.
+MarkerLight expected_light(const PoseFrame& f, const TrackedTarget& tt, const Marker& marker, int frequency) {
+  if (f.targets.modulation.kind == ModulationKind::kConstant || !marker.code) return MarkerLight::kLit;
+  if (frequency >= 0) return MarkerLight::kUnknown;
+  const ExpectedBit bit = expected_bit(tt.clock.fitted(), *marker.code, f.stamp.timestamp_ns, f.stamp.exposure_ns);
+  if (bit == ExpectedBit::kOne) return MarkerLight::kLit;
+  if (bit == ExpectedBit::kZero && f.targets.modulation.kind == ModulationKind::kOnOff) return MarkerLight::kDark;
+  return MarkerLight::kUnknown;
+}
+
+FrameMarkers markers_of(const PoseFrame& f, size_t t, const std::array<int, 4>& frequency_of,
+                        const TrackedTarget& tt) {
+  FrameMarkers out;
+  std::array<int64_t, 4> seen_track{-1, -1, -1, -1};
   for (int m = 0; m < 4; ++m) {
-    const BlobTrack* track = tracker.find(tt.track_of[size_t(m)]);
-    if (!track) continue;
-    const TrackSample& newest = track->history().newest();
-    if (newest.frame == stamp.frame && newest.detected) {
-      seen->push_back(SeenMarker{m, newest.centroid});
-    } else if (track->detections() >= 2 && track->missed() <= kMaxHintFrames) {
-      hints->push_back(HintedMarker{m, track->predict(stamp.middle_ns()), 1.0 + 1.5 * track->missed()});
+    const BlobTrack* track = f.tracker.find(tt.track_of[size_t(m)]);
+    const bool confirmed = tt.confirmed[size_t(m)];
+    if (track) {
+      const TrackSample& newest = track->history().newest();
+      if (newest.frame == f.stamp.frame && newest.detected) {
+        if (newest.merged && confirmed) {
+          out.merged.emplace_back(m, newest);
+        } else {
+          (confirmed ? out.confirmed : out.unconfirmed).push_back(SeenMarker{m, newest.centroid});
+        }
+        seen_track[size_t(m)] = track->id();
+        continue;
+      }
+      if (confirmed && track->detections() >= 2 && track->missed() <= kMaxHintFrames)
+        out.evidence.hints.push_back(
+            HintedMarker{m, track->predict(f.stamp.middle_ns()), 1.0 + 1.5 * track->missed()});
     }
+    out.evidence.missing.push_back(
+        MissingMarker{m, expected_light(f, tt, f.targets.targets[t].markers[size_t(m)], frequency_of[size_t(m)])});
   }
+  // A blob split between two of this target's markers is one observation of their
+  // light's centroid; a part of one shared with another target's marker (or split
+  // further) leans towards a light that is not this target's.
+  std::vector<bool> paired(out.merged.size(), false);
+  for (size_t i = 0; i < out.merged.size(); ++i)
+    for (size_t j = i + 1; j < out.merged.size(); ++j) {
+      const TrackSample& a = out.merged[i].second;
+      const TrackSample& b = out.merged[j].second;
+      if (a.merge_group != b.merge_group || a.merge_parts != 2 || !(a.intensity + b.intensity > 0)) continue;
+      paired[i] = paired[j] = true;
+      MergedMarkers pair;
+      pair.marker = out.merged[i].first;
+      pair.partner = out.merged[j].first;
+      pair.partner_share = b.intensity / (a.intensity + b.intensity);
+      pair.pixel = (a.intensity * a.centroid + b.intensity * b.centroid) / (a.intensity + b.intensity);
+      out.evidence.merged.push_back(pair);
+    }
+  // The others may join a pose of four they fit, as an unconfirmed marker would.
+  for (size_t i = 0; i < out.merged.size(); ++i)
+    if (!paired[i]) out.unconfirmed.push_back(SeenMarker{out.merged[i].first, out.merged[i].second.centroid});
+  for (const BlobTrack& track : f.tracker.tracks()) {
+    const TrackSample& newest = track.history().newest();
+    if (newest.frame != f.stamp.frame || !newest.detected) continue;
+    if (std::find(seen_track.begin(), seen_track.end(), track.id()) != seen_track.end()) continue;
+    out.evidence.lights.push_back(newest.centroid);
+  }
+  return out;
+}
+
+// The pose of all four when an unconfirmed marker is among them and they fit one
+// pose; else the pose of the confirmed markers alone (the unconfirmed ones are
+// then missing markers whose light is known).
+std::optional<MarkerPose> solve(const PoseFrame& f, const Target& target, const TrackedTarget& tt,
+                                const MarkerPoseOptions& options, FrameMarkers* markers) {
+  const auto from_confirmed = [&]() -> std::optional<MarkerPose> {
+    const size_t n = markers->confirmed.size();
+    if (n < 3 && !(n == 2 && !markers->evidence.merged.empty())) return std::nullopt;
+    return solve_marker_pose(f.camera, target, markers->confirmed, tt.predicted, options, markers->evidence);
+  };
+  if (markers->unconfirmed.empty()) return from_confirmed();
+  std::vector<SeenMarker> all = markers->confirmed;
+  all.insert(all.end(), markers->unconfirmed.begin(), markers->unconfirmed.end());
+  if (all.size() == 4) {
+    auto four = solve_marker_pose(f.camera, target, all, tt.predicted, options, markers->evidence);
+    if (four && four->used.size() == 4) return four;
+  }
+  for (const SeenMarker& s : markers->unconfirmed) {
+    markers->evidence.missing.push_back(MissingMarker{s.marker, MarkerLight::kUnknown});
+    markers->evidence.lights.push_back(s.pixel);
+  }
+  return from_confirmed();
+}
+
+// Whether a pose that rests on the prediction (three markers) agrees with it:
+// within max(floor, 4 x the prediction's running error), growing with the square
+// of the frames since the last pose (an acceleration's effect on the
+// extrapolation). A flipped root or a pose through a stray marker fails it.
+bool agrees_with_prediction(const TrackedTarget& tt, const Pose& pose, double frames_since) {
+  if (!tt.predicted) return false;
+  const double growth = std::max(1.0, frames_since * frames_since);
+  const double rot = rotation_angle_between(pose.R, tt.predicted->R);
+  const double rel = (pose.t - tt.predicted->t).norm() / std::max(tt.predicted->t.norm(), 0.1);
+  return rot <= std::max(kMinRotationGate, 4 * tt.prediction_error_rad) * growth &&
+         rel <= std::max(kMinTranslationGate, 4 * tt.prediction_error_rel) * growth;
 }
 
 }  // namespace
 
-std::optional<TargetPose> solve_target_pose(const CameraModel& camera, const Target& target, size_t t,
-                                            const BlobTracker& tracker, const ExposureStamp& stamp,
-                                            int64_t frame_period_ns, const TargetPoseOptions& options,
-                                            TargetRoster* roster) {
+std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const std::array<int, 4>& frequency_of,
+                                            const TargetPoseOptions& options, TargetRoster* roster) {
   TrackedTarget& tt = (*roster)[t];
-  const int64_t mid = stamp.middle_ns();
-  std::vector<SeenMarker> seen;
-  std::vector<HintedMarker> hints;
-  markers_of(tt, tracker, stamp, &seen, &hints);
+  const Target& target = f.targets.targets[t];
+  const int64_t mid = f.stamp.middle_ns();
+  FrameMarkers markers = markers_of(f, t, frequency_of, tt);
   MarkerPoseOptions pose_options = options.pose;
-  if (frame_period_ns > 0) {
-    const double since = double(mid - tt.last_pose_ns) / double(frame_period_ns);
-    pose_options.max_prediction_distance *= std::max(1.0, 1 + 0.5 * (since - 1));
+  pose_options.max_rms_px = std::clamp(4 * tt.typical_rms_px, kMinRmsGatePx, options.pose.max_rms_px);
+  if (f.frame_period_ns > 0) {
+    const double frames = double(mid - tt.last_pose_ns) / double(f.frame_period_ns);
+    pose_options.max_prediction_distance *= std::max(1.0, 1 + 0.5 * (frames - 1));
   }
-  const auto solved =
-      seen.size() >= 3 ? solve_marker_pose(camera, target, seen, tt.predicted, pose_options, hints) : std::nullopt;
+  const double since = f.frame_period_ns > 0 ? double(mid - tt.last_pose_ns) / double(f.frame_period_ns) : 1.0;
+  auto solved = solve(f, target, tt, pose_options, &markers);
+  if (solved && solved->status == PoseStatus::kThreeMarkers && !agrees_with_prediction(tt, solved->pose, since))
+    solved.reset();
   if (!solved) {
     if (mid - tt.last_pose_ns > options.forget_after_ns) tt.forget();
     return std::nullopt;
   }
-  for (int m : solved->used) tt.outlier_frames[size_t(m)] = 0;
+  if (solved->used.size() == 4 && markers.unconfirmed.empty() && markers.evidence.merged.empty())
+    tt.typical_rms_px = std::max(0.05, 0.8 * tt.typical_rms_px + 0.2 * solved->rms_px);
+  for (int m : solved->used) {
+    tt.outlier_frames[size_t(m)] = 0;
+    const BlobTrack* track = f.tracker.find(tt.track_of[size_t(m)]);
+    const bool merged = track && track->history().newest().merged;
+    if (!tt.confirmed[size_t(m)] && !merged && solved->used.size() == 4 && ++tt.fits[size_t(m)] >= 2)
+      tt.confirmed[size_t(m)] = true;
+  }
   if (solved->outlier >= 0 && ++tt.outlier_frames[size_t(solved->outlier)] >= options.max_outlier_frames)
     tt.release(solved->outlier);
   if (tt.predicted) {
+    const double rot = rotation_angle_between(solved->pose.R, tt.predicted->R);
+    const double rel = (solved->pose.t - tt.predicted->t).norm() / std::max(tt.predicted->t.norm(), 0.1);
+    const double per_frame = std::max(1.0, since * since);
+    tt.prediction_error_rad = 0.8 * tt.prediction_error_rad + 0.2 * rot / per_frame;
+    tt.prediction_error_rel = 0.8 * tt.prediction_error_rel + 0.2 * rel / per_frame;
     double sum = 0;
     int n = 0;
-    for (const SeenMarker& s : seen) {
-      Eigen::Vector2d px;
-      if (roster->project_marker(t, s.marker, &px)) sum += (px - s.pixel).norm(), ++n;
-    }
+    for (const auto* group : {&markers.confirmed, &markers.unconfirmed})
+      for (const SeenMarker& s : *group) {
+        Eigen::Vector2d px;
+        if (roster->project_marker(t, s.marker, &px)) sum += (px - s.pixel).norm(), ++n;
+      }
     if (n > 0) tt.prediction_error_px = 0.7 * tt.prediction_error_px + 0.3 * (sum / n);
   }
   tt.predictor.add(mid, solved->pose);

@@ -1,12 +1,20 @@
 #pragma once
 // Internal to Localizer, stage 7 of a frame: each identified target's pose from
 // its markers seen this frame (marker_pose.hpp), started from its predicted pose
-// — in the frame it is identified, the identification's refined pose. A marker
-// dark this frame whose track was seen lately hints where it is (its track's
-// own motion). The prediction is trusted less the further it extrapolates.
-// Then the bookkeeping a pose brings: a marker left out max_outlier_frames in a
-// row leaves the target; the prediction's running error; the predictor's
-// history. A target without a pose for forget_after_ns is forgotten.
+// — in the frame it is identified, the identification's refined pose.
+//   - Four markers seen: one pose of all four, or (one not fitting) of three.
+//   - A marker whose track is not confirmed yet (target_roster.hpp) takes part
+//     only in a pose of all four that it fits (two such fits confirm it); else
+//     the pose comes from the confirmed markers alone.
+//   - Three markers: P3P's roots told apart by a dark marker's hint (its track's
+//     own motion), by the light a lit marker's code says should be where a root
+//     puts it, or by the prediction (marker_pose.hpp); never a root far from the
+//     prediction, and nothing when the ambiguity stays.
+// The prediction is trusted less the further it extrapolates. Then the
+// bookkeeping a pose brings: a marker left out max_outlier_frames in a row
+// leaves the target; the prediction's running error; the predictor's history.
+// A target without a pose for forget_after_ns is forgotten.
+#include <array>
 #include <cstdint>
 #include <optional>
 
@@ -21,9 +29,17 @@ struct TargetPoseOptions {
   int64_t forget_after_ns = 500'000'000;
 };
 
-std::optional<TargetPose> solve_target_pose(const CameraModel& camera, const Target& target, size_t t,
-                                            const BlobTracker& tracker, const ExposureStamp& stamp,
-                                            int64_t frame_period_ns, const TargetPoseOptions& options,
-                                            TargetRoster* roster);
+// The frame the poses are solved in.
+struct PoseFrame {
+  const CameraModel& camera;
+  const TargetsFile& targets;
+  const BlobTracker& tracker;
+  const ExposureStamp& stamp;
+  int64_t frame_period_ns = 0;  // 0: not known yet
+};
+
+// frequency_of: per marker of target t, its frequency code (>= 0) or -1.
+std::optional<TargetPose> solve_target_pose(const PoseFrame& frame, size_t t, const std::array<int, 4>& frequency_of,
+                                            const TargetPoseOptions& options, TargetRoster* roster);
 
 }  // namespace tetrapulse::localizer_internal

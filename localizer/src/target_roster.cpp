@@ -5,21 +5,27 @@
 namespace tetrapulse::localizer_internal {
 
 void TrackedTarget::identify(const std::array<int64_t, 4>& tracks, const CodeClock& code_clock, const Pose& pose,
-                             int64_t mid_ns) {
+                             double rms_px, int64_t mid_ns) {
   forget();
   identified = true;
   track_of = tracks;
+  confirmed = {true, true, true, true};
   clock.start(code_clock, mid_ns);
   seed = pose;
   predicted = pose;
   last_pose_ns = mid_ns;
   prediction_error_px = 2;
+  prediction_error_rad = 0.1;
+  prediction_error_rel = 0.1;
+  typical_rms_px = std::clamp(rms_px, 0.05, 0.5);
 }
 
 void TrackedTarget::forget() {
   identified = false;
   track_of = {-1, -1, -1, -1};
   outlier_frames = {};
+  confirmed = {};
+  fits = {};
   predictor.reset();
   seed.reset();
   clock.forget();
@@ -42,8 +48,8 @@ void TargetRoster::predict(int64_t mid_ns) {
 
 void TargetRoster::drop_ended_tracks(const BlobTracker& tracker) {
   for (TrackedTarget& t : tracked_)
-    for (int64_t& id : t.track_of)
-      if (id >= 0 && !tracker.find(id)) id = -1;
+    for (int m = 0; m < 4; ++m)
+      if (t.track_of[size_t(m)] >= 0 && !tracker.find(t.track_of[size_t(m)])) t.release(m);
 }
 
 std::optional<MarkerRef> TargetRoster::owner(int64_t track_id) const {

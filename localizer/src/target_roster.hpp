@@ -28,23 +28,40 @@ struct TrackedTarget {
   bool identified = false;
   std::array<int64_t, 4> track_of{-1, -1, -1, -1};  // blob track of each marker, -1: none
   std::array<int, 4> outlier_frames{};              // frames in a row each was left out of the pose
+  // A marker's track is confirmed once it is known to be that marker: from the
+  // identification, or (a track that joined later) once its code has matched over
+  // a whole code length or it has fitted two four-marker poses. Until then it
+  // never decides a pose alone (no three-marker pose, no root choice).
+  std::array<bool, 4> confirmed{};
+  std::array<int, 4> fits{};  // four-marker poses an unconfirmed track fitted
   PosePredictor predictor;
   std::optional<Pose> predicted;  // at this frame's mid-exposure
   std::optional<Pose> seed;       // the identification's pose, until the first measured one
   int64_t last_pose_ns = 0;
   double prediction_error_px = 2;  // running mean of |observed - predicted| marker pixels
+  // Running means of how far measured poses lay from their predictions: rotation
+  // angle (rad) and translation relative to the distance. They size the gate a
+  // pose that rests on the prediction (three markers) must pass.
+  double prediction_error_rad = 0.1;
+  double prediction_error_rel = 0.1;
+  // Running mean of the RMS reprojection error of its poses of four confirmed,
+  // unmerged markers: the level of its centroids' noise. A pose that fits four
+  // times worse holds a marker that is not where it seems (a blob merged with
+  // another light, a stray track).
+  double typical_rms_px = 0.5;
   TargetClock clock;
 
-  // Identified by `clock` and `pose` at `mid_ns`, its markers on `tracks`.
-  void identify(const std::array<int64_t, 4>& tracks, const CodeClock& code_clock, const Pose& pose, int64_t mid_ns);
+  // Identified by `clock` and `pose` (fitting its four markers with RMS `rms_px`)
+  // at `mid_ns`, its markers on `tracks`.
+  void identify(const std::array<int64_t, 4>& tracks, const CodeClock& code_clock, const Pose& pose, double rms_px,
+                int64_t mid_ns);
   void forget();
-  void release(int marker) {
-    track_of[size_t(marker)] = -1;
-    outlier_frames[size_t(marker)] = 0;
-  }
+  void release(int marker) { assign(marker, -1); }
   void assign(int marker, int64_t track_id) {
     track_of[size_t(marker)] = track_id;
     outlier_frames[size_t(marker)] = 0;
+    confirmed[size_t(marker)] = false;
+    fits[size_t(marker)] = 0;
   }
 };
 

@@ -104,6 +104,56 @@ TEST(TrackBits, NoiseRarelyFlipsABit) {
   EXPECT_LT(unknown, 60);  // of 6000
 }
 
+// What a sensor leaves of a marker's light, r = relative emission in 0..1 at the
+// brightest: clipped at full scale by a radiance `overexposure` times full scale
+// (the clipped sum still grows a little with the light: the ring of pixels it
+// adds), or encoded with a gamma of 1/2.2 as video cameras do.
+RingBuffer<TrackSample, kTrackHistory> compressed(const std::string& bits, double low, double (*brightness)(int),
+                                                  double noise, uint64_t seed, double (*response)(double),
+                                                  bool saturated) {
+  auto h = samples(bits, low, brightness, noise, seed);
+  for (size_t j = 0; j < h.size(); ++j) {
+    const double scale = brightness(int(j));
+    h[j].intensity = scale * response(std::max(0.0, h[j].intensity / scale));
+    h[j].saturated = saturated;
+  }
+  return h;
+}
+// A disc clipped at 10x overexposure: its sum grows by the rim the PSF adds,
+// about 1 + 0.03 ln(radiance) (0.3 reads 0.87 of 1).
+double clipped(double r) { return 1 + 0.11 * std::log(std::max(r, 1e-3)); }
+double gamma_encoded(double r) { return std::pow(r, 1 / 2.2); }
+
+TEST(TrackBits, SaturatedTwoLevelIsReadFromTheLevelsItShows) {
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  // 0.3 reads as 0.87 of a 1: the nominal levels read nothing.
+  EXPECT_EQ(read(compressed(kBits, 0.3, steady, 0.005, 11, clipped, true), m), kBits);
+}
+
+TEST(TrackBits, SaturatedTwoLevelFollowsAMarkerClosingIn) {
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  const std::string got = read(compressed(kBits, 0.3, approaching, 0.005, 12, clipped, true), m);
+  int wrong = 0, unknown = 0;
+  for (size_t i = 0; i < kBits.size(); ++i) wrong += got[i] != '?' && got[i] != kBits[i], unknown += got[i] == '?';
+  EXPECT_EQ(wrong, 0) << got;
+  EXPECT_LE(unknown, 2) << got;
+}
+
+TEST(TrackBits, GammaEncodedTwoLevelIsRead) {
+  // 0.3 reads 0.58 of a 1, inside the nominal levels' unknown band.
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  EXPECT_EQ(read(compressed(kBits, 0.3, approaching, 0.01, 13, gamma_encoded, false), m), kBits);
+}
+
+TEST(TrackBits, SaturatedRunOfOnesClosingInIsUnknown) {
+  // A drift of the level is no code: a marker that only shows 1s while it grows
+  // 6 times brighter reads nothing.
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  const std::string ones(60, '1');
+  const std::string got = read(compressed(ones, 0.3, approaching, 0.005, 14, clipped, true), m);
+  EXPECT_EQ(got.find('0'), std::string::npos) << got;
+}
+
 // A track's samples as the tracker leaves them: a marker playing random bits,
 // noisy enough for doubtful readings, sometimes missed (measured from the
 // aperture or not at all).

@@ -24,6 +24,7 @@ enum class BlobOrigin : uint8_t {
   kErosionSplit,  // recovery: one part of a merged blob split by erosion
   kCircleFit,     // recovery: centre of a circle fitted to a cut or shadowed blob's rim
   kMerged,        // two nearby blobs merged when there were more than expected
+  kPredictionSplit,  // one part of a blob that held two or more predicted markers (BlobRoi::splits)
 };
 const char* blob_origin_name(BlobOrigin origin);
 
@@ -42,6 +43,11 @@ struct Blob {
   cv::Rect bbox;            // pixels above F2
   bool saturated = false;   // some pixel reached the saturation level: intensity is a lower bound
   bool clipped = false;     // touches the image border or the edge of the searched window
+  // Its light was shared with another marker's (kPredictionSplit): the centroid
+  // is biased towards the other and the intensity holds some of its light.
+  bool merged = false;
+  int merge_group = 0;  // merged: parts of one blob share this number (unique within a frame's extraction)
+  int merge_parts = 0;  // merged: how many parts that blob was split into
   BlobOrigin origin = BlobOrigin::kThreshold;
 };
 
@@ -78,6 +84,11 @@ struct BlobRoi {
   // radius + aperture_radius, so a blob at the square's edge is seen whole.
   double aperture_radius = 4;
   int64_t tag = -1;  // the caller's label (e.g. a track id), copied to the measurement
+  // `center` is where a marker is predicted from its target's pose: a blob that
+  // holds the centres of two or more such ROIs is two markers merged, and is
+  // split between them (each pixel to the nearest centre, after the centres'
+  // common offset from the blob is taken out); its parts are marked merged.
+  bool splits = false;
 };
 
 enum class RoiStatus : uint8_t {

@@ -45,6 +45,10 @@ struct TrackSample {
   double intensity = 0;
   bool detected = false;  // a blob was found
   bool measured = false;  // `intensity` is a measurement (a blob, or an absent ROI's aperture)
+  bool saturated = false; // some pixel of it clipped: `intensity` is compressed (a lower bound)
+  bool merged = false;    // a part of a blob split between predicted markers (Blob::merged): not measured
+  int merge_group = 0;    // merged: Blob::merge_group and merge_parts
+  int merge_parts = 0;
   // The blob's centroid, or the position predicted for this frame when no blob
   // was found; pixels.
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
@@ -144,7 +148,7 @@ class BlobTracker {
  private:
   double gate_radius(const BlobTrack& track) const;
   void add_detection(BlobTrack* track, const ExposureStamp& frame, const Blob& blob);
-  void add_absence(BlobTrack* track, const ExposureStamp& frame, std::optional<double> intensity);
+  void add_absence(BlobTrack* track, const ExposureStamp& frame, std::optional<double> intensity, bool saturated = false);
 
   BlobTrackerConfig config_;
   std::vector<BlobTrack> tracks_;

@@ -4,14 +4,26 @@
 //   4 markers  refinement (pose_refinement.hpp) from the prediction, or from
 //              known-correspondence P4P (p4p.hpp) without one or when the
 //              prediction does not converge to a small error;
-//   3 markers  P3P gives up to four poses. Where the fourth marker's pixel can
-//              be predicted from its own recent track (`hints`), the pose that
-//              puts it nearest that pixel is taken when it is clearly the
-//              nearest (the others at least three times as far and 4 px
-//              further); else the pose closest to the predicted pose, when it
-//              is clearly the closest (the others at least twice as far) and
-//              near it. Then refined: status kThreeMarkers. Without either
-//              prediction three markers give no pose.
+//   3 markers  P3P gives up to four poses (roots), of which the paper keeps
+//              the one the fourth marker's reprojection fits, else the one
+//              closest to the prediction. In that order:
+//              - a hint: where the fourth marker's pixel is predicted from its
+//                own recent track (`hints`), the root that puts it nearest is
+//                taken when it is clearly the nearest (the others at least
+//                three times as far and 4 px further);
+//              - its light: when the fourth marker's code says it is lit in this
+//                exposure (MissingMarker), the roots near the prediction whose
+//                fourth-marker pixel holds a blob of this frame (`lights`)
+//                explain the image; exactly one such root is taken, refined
+//                with that blob as a fourth marker when it fits;
+//              - the prediction: the root closest to the predicted pose when it
+//                is clearly the closest (the others at least twice as far),
+//                unless a farther root near the prediction is the one the
+//                fourth marker's light explains (then the ambiguity stands);
+//              every root taken must lie within max_prediction_distance of the
+//              prediction. Then refined: status kThreeMarkers. Without a
+//              prediction three markers give no pose; an unresolved ambiguity
+//              gives none either.
 // A pose is returned only when its RMS reprojection error is at most
 // max_rms_px. With four markers whose pose misses that, each marker is left out
 // in turn as above; the one whose absence leaves a pose that fits and agrees
@@ -58,6 +70,38 @@ struct HintedMarker {
   double uncertainty_px = 2;  // how far the hint may be off
 };
 
+// What a marker not seen this frame should look like, from its code and clock.
+enum class MarkerLight : uint8_t {
+  kUnknown,  // mixed exposure, frequency code, or no clock
+  kLit,      // its code plays a 1 (or it is unmodulated): a blob should be there, unless hidden
+  kDark,     // its code plays a 0 (on_off): nothing should be there
+};
+
+struct MissingMarker {
+  int marker = 0;
+  MarkerLight light = MarkerLight::kUnknown;
+};
+
+// Two markers whose spots merged into one blob: the centroid of their light
+// (pose_refinement.hpp), with the partner's share of it.
+struct MergedMarkers {
+  int marker = 0;
+  int partner = 0;
+  double partner_share = 0.5;
+  Eigen::Vector2d pixel = Eigen::Vector2d::Zero();
+};
+
+// What else the frame shows, for telling P3P's roots apart.
+struct MarkerEvidence {
+  std::vector<HintedMarker> hints;     // markers dark now whose tracks predict their pixels
+  std::vector<MissingMarker> missing;  // markers not seen, with what their codes say
+  std::vector<Eigen::Vector2d> lights; // centroids of this frame's blobs that are none of the seen markers
+  // Pairs of markers merged into one blob: they join the refinement of a pose the
+  // seen markers give; with two seen markers, they make a pose refined from the
+  // prediction (status kThreeMarkers).
+  std::vector<MergedMarkers> merged;
+};
+
 struct MarkerPose {
   Pose pose;
   PoseStatus status = PoseStatus::kAllMarkers;
@@ -75,6 +119,6 @@ double pose_distance(const Pose& a, const Pose& b);
 std::optional<MarkerPose> solve_marker_pose(const CameraModel& camera, const Target& target,
                                             const std::vector<SeenMarker>& seen, const std::optional<Pose>& prediction,
                                             const MarkerPoseOptions& options = {},
-                                            const std::vector<HintedMarker>& hints = {});
+                                            const MarkerEvidence& evidence = {});
 
 }  // namespace tetrapulse

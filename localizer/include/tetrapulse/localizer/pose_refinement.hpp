@@ -1,11 +1,14 @@
 #pragma once
 // Least-squares pose of one target from its identified markers' blob centroids, in
 // the camera model's image space (pixels):
-//   minimise over (R, t)   sum_i rho( |h(R X_i + t) - u_i|^2 )
+//   minimise over (R, t)   sum_i rho( |h_i(R, t) - u_i|^2 ),   h_i = h(R X_i + t)
 // X_i marker centres (target frame, metres), u_i observed centroids (pixels), h the
 // camera model's projection of the marker centre or, for markers of known diameter,
 // the centroid of the marker sphere's image (sphere_image.hpp); rho the identity or
-// a (smooth) Huber loss. Levenberg-Marquardt with the rotation updated on SO(3):
+// a (smooth) Huber loss. Two markers whose spots merged into one blob are one
+// observation of their light's centroid, h_i = (1 - s) h(R X_i + t) + s h(R X'_i + t),
+// s the partner's share of the light (the centroid of two spots' sum is the
+// flux-weighted mean of theirs). Levenberg-Marquardt with the rotation updated on SO(3):
 //   R <- exp([w]x) R,  t <- t + v,
 // (w, v) in the camera frame: w rotates the target about its origin.
 // Breitenmoser et al. 2011, Sec. IV-C, refine the P3P pose with all markers.
@@ -23,6 +26,9 @@ namespace tetrapulse {
 struct MarkerObservation {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  // marker centre, target frame
   Eigen::Vector2d pixel = Eigen::Vector2d::Zero();       // observed blob centroid
+  // partner_share > 0: the blob is this marker's and the partner's light merged.
+  Eigen::Vector3d partner_m = Eigen::Vector3d::Zero();   // the partner's centre, target frame
+  double partner_share = 0;                              // s in (0, 1): its share of the light
 };
 
 struct RefinementOptions {

@@ -15,6 +15,17 @@
 // (TrackSample::measured). An on-off 0 is dark: no level to learn. An
 // exposure that straddles two bits of different value reads an intermediate
 // level: unknown, or the value of the bit it mostly saw.
+// Two levels whose light does not keep the nominal ratio — a saturated marker,
+// whose clipped 1 gains only a ring of pixels over its 0, or a camera whose
+// response is not linear (gamma-encoded video) — are learned from the window
+// itself: the widest gap between the sorted logarithms of its detected
+// intensities splits 0s from 1s when it is at least a ratio of 1.04, at least
+// twice the spread on either side, with two samples or more on each side (a
+// drifting level spreads values evenly, a code splits them into two tight
+// groups), after a common drift of the logarithms (a line fitted with the
+// bits) is taken out; mid is then the gap's middle and band a quarter of it.
+// A window with a saturated sample reads this way when it can; one whose 0s
+// the nominal levels cannot read (or leave unknown) too.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +40,16 @@ enum class ReadBit : int8_t { kZero = 0, kOne = 1, kUnknown = -1 };
 struct BitReading {
   int window = 8;             // samples either side
   double band_fraction = 0.15;
+};
+
+// Where a sample's ratio r to its bright level reads: r >= mid + band -> 1,
+// r <= mid - band -> 0, unknown between.
+struct BitSplit {
+  double mid = 0, band = 0;
+
+  ReadBit bit(double r) const {
+    return r >= mid + band ? ReadBit::kOne : r <= mid - band ? ReadBit::kZero : ReadBit::kUnknown;
+  }
 };
 
 // One value per sample of a track's history (same indices).
@@ -63,6 +84,7 @@ class TrackBitReader {
   TrackBits bits_{};
   TrackBits pass1_{};  // each sample read against its window's brightest sample
   std::array<double, kTrackHistory> bright_{};  // that sample's intensity; 0: none to read against
+  std::array<BitSplit, kTrackHistory> split_{};   // the window's levels: ratios to bright_ read as 1 or 0
   size_t size_ = 0;           // history size at the last update; 0: nothing read yet
   int64_t newest_frame_ = 0;  // the frame of its newest sample
   size_t current_from_ = 0;   // bits_[current_from_, size_) were current then
