@@ -292,12 +292,13 @@ tl::expected<void, BlobInputError> BlobExtractor::extract(const cv::Mat& image, 
       if (s.group_of[i] == int(g)) s.members.push_back(static_cast<int>(i));
     const Window w = pass.prepare(image, s.groups[g], out);
     pass.find(w, w.levels.f1);
-    const int found = s.claimed(rois);
-    if (found < int(s.members.size())) pass.recover(w, int(s.members.size()) - found);
+    // Predictions split merged markers before any recovery guesses at them.
     s.centres.clear();
     for (int i : s.members)
       if (rois[size_t(i)].splits) s.centres.push_back(rois[size_t(i)].center);
     pass.split_by_prediction(w, s.centres);
+    const int found = s.claimed(rois);
+    if (found < int(s.members.size())) pass.recover(w, int(s.members.size()) - found);
     s.answer(rois, w, out);
     pass.list_rejected(out);
   }

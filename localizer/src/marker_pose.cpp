@@ -97,7 +97,7 @@ std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& ta
   const auto near_prediction = [&](int k) { return d[size_t(k)] <= options.max_prediction_distance; };
   // The light: roots near the prediction whose fourth marker, lit by its code, falls on a blob.
   std::array<int, 4> light_of{-1, -1, -1, -1};  // the blob each root's lit fourth marker falls on
-  int explained = 0, explained_root = -1;
+  int explained = 0, explained_root = -1;  // roots whose lit fourth marker falls on a blob
   int lit_marker = -1;
   for (const MissingMarker& m : evidence.missing)
     if (m.light == MarkerLight::kLit) lit_marker = m.marker;
@@ -113,13 +113,19 @@ std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& ta
       if (light_of[size_t(k)] >= 0) ++explained, explained_root = k;
     }
   }
-  if (chosen < 0 && explained == 1) {
-    chosen = explained_root;
-    // The blob is the fourth marker when the four fit one pose.
-    std::vector<SeenMarker> four = seen;
-    four.push_back(SeenMarker{lit_marker, evidence.lights[size_t(light_of[size_t(chosen)])]});
-    auto out = refine(camera, target, four, poses[size_t(chosen)], PoseStatus::kAllMarkers, options);
-    if (out && out->rms_px <= options.max_rms_px) return out;
+  if (chosen < 0 && explained > 0) {
+    // The blob is the fourth marker when the four fit one pose: refined from each
+    // root that puts it there, the best fit (roots that close converge together).
+    std::optional<MarkerPose> best;
+    for (int k = 0; k < n; ++k) {
+      if (light_of[size_t(k)] < 0) continue;
+      std::vector<SeenMarker> four = seen;
+      four.push_back(SeenMarker{lit_marker, evidence.lights[size_t(light_of[size_t(k)])]});
+      auto out = refine(camera, target, four, poses[size_t(k)], PoseStatus::kAllMarkers, options);
+      if (out && out->rms_px <= options.max_rms_px && (!best || out->rms_px < best->rms_px)) best = out;
+    }
+    if (best) return best;
+    if (explained == 1) chosen = explained_root;
   }
   if (chosen < 0 && prediction) {
     const int best = clear_minimum(d, n, 2.0, 0.0);

@@ -136,8 +136,10 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
   }
   const double since = f.frame_period_ns > 0 ? double(mid - tt.last_pose_ns) / double(f.frame_period_ns) : 1.0;
   auto solved = solve(f, target, tt, pose_options, &markers);
-  if (solved && solved->status == PoseStatus::kThreeMarkers && !agrees_with_prediction(tt, solved->pose, since))
-    solved.reset();
+  // A pose of fewer than four confirmed markers rests on the prediction: it must agree with it.
+  const bool rests_on_prediction =
+      solved && (solved->status == PoseStatus::kThreeMarkers || markers.confirmed.size() < 4);
+  if (rests_on_prediction && !agrees_with_prediction(tt, solved->pose, since)) solved.reset();
   if (!solved) {
     if (mid - tt.last_pose_ns > options.forget_after_ns) tt.forget();
     return std::nullopt;

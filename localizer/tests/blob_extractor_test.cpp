@@ -429,6 +429,42 @@ TEST(BlobExtractor, RoiModeGivesEachOfTwoCloseMarkersItsOwnBlob) {
   EXPECT_LT((out.rois[1].position - b).norm(), 0.05);
 }
 
+TEST(BlobExtractor, RoiModeSplitsMergedMarkersBetweenTheirPredictions) {
+  // Two discs of 4 px radius 6 px apart merge into one blob; their targets'
+  // poses predict them 1 px off. Split between the predictions, each part's
+  // centroid lies far nearer its disc than the merged blob's centroid does, and
+  // the parts are marked merged, one group.
+  auto img = canvas(120, 100, 20);
+  const Eigen::Vector2d a(50.3, 50.2), b(56.1, 51.4);
+  add_disc(&img, a, 4.0, 160);
+  add_disc(&img, b, 4.0, 120);
+  const Eigen::Vector2d off(0.7, -0.6);
+  std::vector<BlobRoi> rois = {roi(a + off, 1, 5), roi(b + off, 2, 5)};
+  for (BlobRoi& r : rois) r.splits = true;
+  BlobExtractor extractor;
+  BlobExtraction out;
+  ASSERT_TRUE(extractor.extract(quantise(img, CV_8U), rois, &out));
+  ASSERT_TRUE(out.rois[0].detected());
+  ASSERT_TRUE(out.rois[1].detected());
+  const Blob& pa = out.rois[0].blob;
+  const Blob& pb = out.rois[1].blob;
+  EXPECT_TRUE(pa.merged && pb.merged);
+  EXPECT_EQ(pa.origin, BlobOrigin::kPredictionSplit);
+  EXPECT_EQ(pa.merge_group, pb.merge_group);
+  EXPECT_EQ(pa.merge_parts, 2);
+  const Eigen::Vector2d whole = (pa.intensity * pa.centroid + pb.intensity * pb.centroid) / (pa.intensity + pb.intensity);
+  EXPECT_LT((pa.centroid - a).norm(), 0.6);
+  EXPECT_LT((pb.centroid - b).norm(), 0.6);
+  EXPECT_GT((whole - a).norm(), 2.5);  // what one centroid of both would have said
+  // The light's centroid is the flux-weighted mean of the two discs.
+  const Eigen::Vector2d truth = (160 * a + 120 * b) / 280.0;
+  EXPECT_LT((whole - truth).norm(), 0.05);
+  // Without predictions of both, nothing is split.
+  rois[1].splits = false;
+  ASSERT_TRUE(extractor.extract(quantise(img, CV_8U), rois, &out));
+  EXPECT_FALSE(out.rois[0].blob.merged);
+}
+
 TEST(BlobExtractor, RoiModeAtAndBeyondTheImageBorder) {
   auto img = canvas(100, 80, 20);
   const Eigen::Vector2d edge(97.8, 40.3);

@@ -87,6 +87,49 @@ TEST_F(MarkerPoseTest, ThreeMarkersWithAPredictionAreNeverWrong) {
   EXPECT_GE(solved, kTrials * 9 / 10);
 }
 
+TEST_F(MarkerPoseTest, ALitFourthMarkersLightPicksTheRootThePredictionWouldMiss) {
+  // Three markers whose P3P has a wrong root near the truth, with the prediction
+  // on that wrong root: by the prediction alone the wrong root is taken. The
+  // fourth marker's code says it is lit, and a blob lies where the true root
+  // puts it: that root is taken, refined with the blob as a fourth marker.
+  std::normal_distribution<double> n(0, 1);
+  int cases = 0, right = 0, wrong_without = 0;
+  for (int trial = 0; trial < 3000 && cases < 40; ++trial) {
+    const View v = view(2.0, 0.02);
+    const int hidden = trial % 4;
+    std::vector<SeenMarker> three;
+    Bearing3 x;
+    Point3x3 X;
+    for (int m = 0; m < 4; ++m)
+      if (m != hidden) three.push_back(SeenMarker{m, v.pixels[size_t(m)]});
+    for (size_t i = 0; i < 3; ++i) {
+      ASSERT_TRUE(camera.unproject(three[i].pixel, &x[i]));
+      X[i] = target.markers[size_t(three[i].marker)].position_m;
+    }
+    PoseCandidates roots;
+    const int k = solve_p3p(kDefaultP3PSolver, x, X, &roots);
+    int wrong = -1;
+    for (int r = 0; r < k; ++r) {
+      const double d = pose_distance(roots[size_t(r)], v.truth);
+      if (d > 0.05 && d < 0.25) wrong = r;
+    }
+    if (wrong < 0) continue;
+    ++cases;
+    const Pose predicted = roots[size_t(wrong)];
+    const auto alone = solve_marker_pose(camera, target, three, predicted, centres());
+    wrong_without += alone && testing::pose_error(alone->pose, v.truth) > 0.03;
+    MarkerEvidence evidence;
+    evidence.missing.push_back(MissingMarker{hidden, MarkerLight::kLit});
+    evidence.lights.push_back(v.pixels[size_t(hidden)]);
+    evidence.lights.push_back(v.pixels[size_t(hidden)] + Eigen::Vector2d(80, 60));  // another target's marker
+    const auto p = solve_marker_pose(camera, target, three, predicted, centres(), evidence);
+    if (p && testing::pose_error(p->pose, v.truth) < 0.01 && p->used.size() == 4) ++right;
+  }
+  ASSERT_GE(cases, 10);
+  EXPECT_GE(wrong_without, cases / 2);  // the prediction alone takes the wrong root
+  EXPECT_EQ(right, cases);
+}
+
 TEST_F(MarkerPoseTest, AMarkerThatDoesNotFitIsNamedAndLeftOut) {
   // Near enough that the target spans well over 15 px (far away, four markers
   // 15 px off can be fitted by another pose: 8 equations, 6 unknowns).

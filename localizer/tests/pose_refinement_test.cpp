@@ -114,6 +114,34 @@ TEST_P(PoseRefinement, CovarianceAgreesWithMonteCarlo) {
   }
 }
 
+TEST_P(PoseRefinement, TwoMergedMarkersAreOneObservationOfTheirLightsCentroid) {
+  // Markers 2 and 3 merged into one blob whose centroid is the flux-weighted mean
+  // of their projections (share 0.35 of marker 3): with markers 0 and 1 the pose
+  // is exact, and from 5 degrees off it converges to it. Treating the blob as
+  // marker 2's centroid instead would be off.
+  std::mt19937_64 rng(45);
+  int failed = 0, biased = 0;
+  const int trials = 300;
+  for (int i = 0; i < trials; ++i) {
+    const Pose truth = random_visible_pose(rng, camera_, target_, 0.5, 4.0, 2.0);
+    const auto px = observe(rng, camera_, target_, truth, 0.0);
+    const double share = 0.35;
+    std::vector<MarkerObservation> obs = {{target_.markers[0].position_m, px[0]},
+                                          {target_.markers[1].position_m, px[1]}};
+    obs.push_back({target_.markers[2].position_m, (1 - share) * px[2] + share * px[3], target_.markers[3].position_m,
+                   share});
+    const Pose start = perturbed(rng, truth, 5 * M_PI / 180, 0.05);
+    const auto refined = refine_pose(camera_, obs, start);
+    failed += !(refined && pose_error(refined->pose, truth) < 1e-7);
+    std::vector<MarkerObservation> naive = obs;
+    naive[2].partner_share = 0;
+    const auto wrong = refine_pose(camera_, naive, truth);
+    biased += wrong && pose_error(wrong->pose, truth) > 1e-4;
+  }
+  EXPECT_LE(failed, trials / 100);
+  EXPECT_GE(biased, trials * 9 / 10);
+}
+
 TEST_P(PoseRefinement, ThreeMarkersConvergeToTheTruePose) {
   // Three markers: six residuals for six unknowns. Noise-free, the fit is exact.
   std::mt19937_64 rng(43);
