@@ -44,7 +44,7 @@ awk -v skip="$((locked_at + 2))" -v offset="$offset" '
   / clock monotonic_ns / {
     n++
     if (n <= skip) next
-    for (i = 1; i <= NF; i++) { if ($i == "monotonic_ns") m = $(i + 1); if ($i == "rig_ns") r = $(i + 1); if ($i == "sync") s = $(i + 1) }
+    for (i = 1; i <= NF; i++) { if ($i == "monotonic_ns") m = $(i + 1); if ($i == "rig_ns") r = $(i + 1); if ($i == "sync") s = $(i + 1); if ($i == "held") h = $(i + 1) }
     e = r - m - offset
     if (s != "locked") bad++
     c++; sum += e; sq += e * e; a = e < 0 ? -e : e; if (a > max) max = a
@@ -53,6 +53,6 @@ awk -v skip="$((locked_at + 2))" -v offset="$offset" '
     if (c < 8) { printf "only %d clock reports after lock\n", c; exit 1 }
     # busybox awk has no sqrt: Newton steps for the rms
     ms = sq / c; rms = ms > 1 ? ms : 1; for (i = 0; i < 60; i++) rms = (rms + ms / rms) / 2
-    printf "can: %d reports after lock: true clock error mean %.0f ns, rms %.0f ns, max |error| %.0f ns; %d not locked\n", c, sum / c, rms, max, bad
+    printf "can: %d reports after lock: true clock error mean %.0f ns, rms %.0f ns, max |error| %.0f ns; %d not locked; %d samples held out\n", c, sum / c, rms, max, bad, h
     if (max > 200000 || bad > 0) exit 1
   }' /tmp/board-can.txt || { grep ' clock ' /tmp/board-can.txt; fail "the board's clock left 200 us of rig time (or lost lock) under CAN sync"; }

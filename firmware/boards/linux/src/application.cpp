@@ -173,9 +173,9 @@ BoardResult<tp::RebootMode> run_application(const LinuxBoardOptions& o, FileFlas
       char line[256];
       std::snprintf(line, sizeof(line),
                     "clock monotonic_ns %" PRId64 " rig_ns %" PRId64 " sync %s offset_ns %d rate_ppb %d accepted %u"
-                    " led_changes %" PRIu64 " led_late_ns %" PRId64 " led_late_max_ns %" PRId64,
+                    " held %u led_changes %" PRIu64 " led_late_ns %" PRId64 " led_late_max_ns %" PRId64,
                     m, firmware.board().sync().servo().to_rig(t), sync_state_name(s.sync_state), s.offset_ns,
-                    s.rate_ppb, s.sync_accepted, leds.lateness().applied, leds.lateness().last_ns,
+                    s.rate_ppb, s.sync_accepted, firmware.board().sync().servo().held_out(), leds.lateness().applied, leds.lateness().last_ns,
                     leds.lateness().max_ns);
       board_log(line);
     }

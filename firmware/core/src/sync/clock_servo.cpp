@@ -1,5 +1,7 @@
 #include "tetrapulse/fw/sync/clock_servo.hpp"
 
+#include <stdint.h>
+
 #include "tetrapulse/fw/sync/fixed_point.hpp"
 
 namespace tetrapulse::fw {
@@ -30,6 +32,7 @@ ServoTuning ServoTuning::can() {
   t.lock_threshold_ns = 20'000;
   t.lock_count = 10;
   t.unlock_count = 10;  // 1 s at 10 Hz: a scheduling hiccup on the sender is not a lost lock
+  t.hold_ahead_ns = 80'000;  // 4 lock thresholds: locked, the envelope is within one of zero
   t.gate_acquiring_ns = 2'000'000;
   t.gate_locked_ns = 300'000;
   t.gate_growth_ppb = 20'000;
@@ -51,6 +54,7 @@ void ClockServo::restart(const ServoTuning& tuning) {
   good_in_row_ = 0;
   far_in_row_ = 0;
   bad_in_row_ = 0;
+  held_in_row_ = 0;
   window_count_ = 0;
   window_next_ = 0;
   have_accepted_ = false;
@@ -75,12 +79,12 @@ void ClockServo::remember(Tick local, int64_t rig_ns) {
   if (window_count_ < tuning_.window) ++window_count_;
 }
 
-int64_t ClockServo::filtered_error(Tick local, int64_t rig_ns) const {
+int64_t ClockServo::envelope(Tick local) const {
   // Residuals of the remembered samples against a line through (local, rig(local)) at the
   // integral rate only: the proportional part of the rate is a transient phase correction
   // and would skew samples further back.
   const int64_t here = mapping_.to_rig(local);
-  int64_t best = rig_ns - here;
+  int64_t best = INT64_MIN;
   for (uint8_t i = 0; i < window_count_; ++i) {
     const Sample& s = window_[i];
     const int64_t dticks = s.local >= local ? static_cast<int64_t>(s.local - local)
@@ -90,6 +94,29 @@ int64_t ClockServo::filtered_error(Tick local, int64_t rig_ns) const {
     if (residual > best) best = residual;
   }
   return best;
+}
+
+int64_t ClockServo::filtered_error(Tick local, int64_t rig_ns) const {
+  const int64_t own = rig_ns - mapping_.to_rig(local);
+  const int64_t remembered = envelope(local);
+  return remembered > own ? remembered : own;
+}
+
+bool ClockServo::hold_out(Tick local, int64_t error) {
+  if (phase_ != Phase::kLocked || tuning_.hold_ahead_ns <= 0 || window_count_ == 0) return false;
+  if (error - envelope(local) <= tuning_.hold_ahead_ns) {
+    held_in_row_ = 0;
+    return false;
+  }
+  if (++held_in_row_ < tuning_.unlock_count) {
+    ++held_out_;
+    return true;
+  }
+  // A run of them: the time base did move. Unlock and let the loop follow.
+  held_in_row_ = 0;
+  phase_ = Phase::kTracking;
+  good_in_row_ = 0;
+  return false;
 }
 
 int64_t ClockServo::gate(Tick local) const {
@@ -139,6 +166,10 @@ SampleVerdict ClockServo::add_sample(Tick local, int64_t rig_ns) {
     return SampleVerdict::kRejected;
   }
   bad_in_row_ = 0;
+  if (hold_out(local, error)) {
+    ++rejected_;
+    return SampleVerdict::kRejected;
+  }
   last_error_ = error;
 
   if (phase_ == Phase::kFirstSample) {

@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "board_testing.hpp"
 
@@ -174,6 +176,122 @@ TEST_P(CanLateSpikes, LocksWithin200usAndStaysLocked) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ClockServo, CanLateSpikes, ::testing::Range(1u, 9u));
+
+// The VM's flake (vm.board.can under TCG): locked, one sample 150..400 us off, at random
+// points. A late Sync costs nothing (the minimum-latency filter takes the earliest
+// arrival); one whose FollowUp time is that much later than its reception (a tx stamp or
+// clock conversion off by a preemption) looks early, led the filter for its 16 samples and
+// swung the rate to -170..-500 ppm, 250 us off and unlocked, as in the VM. Locked, such a
+// sample is held out.
+enum class Spike { kLateSync, kLateStamp };
+
+class CanSingleSpikes : public ::testing::TestWithParam<std::tuple<uint32_t, Spike>> {};
+
+struct SpikeRun {
+  int64_t locked_at = -1;
+  int unlocked_after_lock = 0;
+  int spikes = 0;
+  std::vector<int32_t> rate_ppb;  // after every FollowUp
+  EdgeTiming after_lock;
+};
+
+// 40 s of 10 Hz Sync/FollowUp with 0..50 us latency; with `spikes`, from lock on, one
+// sample every 1..4 s is 150..400 us off (its own generator: the jitter is the same with
+// and without).
+SpikeRun run_spikes(uint32_t seed, Spike kind, bool spikes) {
+  TestBoard b(board_at(40, 9'000'000 + seed));
+  const int64_t start = 1 * kSecond, end = start + 40 * kSecond;
+  b.board.advance_to(start - 100 * kMs);
+  b.configure(can_config());
+  std::mt19937 rng(seed), spike_rng(seed + 1000);
+  std::uniform_int_distribution<int64_t> jitter(0, 50'000), spike(150'000, 400'000);
+  std::uniform_int_distribution<int> gap(10, 40);
+  SpikeRun run;
+  int next_spike = -1;
+  uint16_t seq = 0;
+  for (int64_t t = start; t < end; t += 100 * kMs, ++seq) {
+    int64_t rx = t + jitter(rng), stamp = t;
+    if (spikes && run.locked_at >= 0 && next_spike < 0) next_spike = seq + gap(spike_rng);
+    if (seq == next_spike) {
+      (kind == Spike::kLateSync ? rx : stamp) += spike(spike_rng);
+      next_spike = -1;
+      ++run.spikes;
+    }
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{seq}}, rx);
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{seq, stamp}}, rx + kMs);
+    const protocol::StatusReport s = b.board.status();
+    const bool locked = s.sync_state == SyncState::kLocked;
+    if (run.locked_at < 0 && locked) run.locked_at = t;
+    if (run.locked_at >= 0 && !locked) ++run.unlocked_after_lock;
+    run.rate_ppb.push_back(s.rate_ppb);
+  }
+  b.board.advance_to(end);
+  if (run.locked_at >= 0) run.after_lock = edge_timing(b.board, protocol::TimeBase{0, kMs}, run.locked_at, end);
+  return run;
+}
+
+TEST_P(CanSingleSpikes, OneSampleOffWhileLockedMovesNothing) {
+  const auto [seed, kind] = GetParam();
+  const SpikeRun clean = run_spikes(seed, kind, false);
+  const SpikeRun spiky = run_spikes(seed, kind, true);
+  ASSERT_GE(spiky.locked_at, 0) << "never locked";
+  ASSERT_EQ(spiky.rate_ppb.size(), clean.rate_ppb.size());
+  int32_t rate_moved_ppb = 0;
+  for (size_t i = 0; i < spiky.rate_ppb.size(); ++i) {
+    rate_moved_ppb = std::max(rate_moved_ppb, std::abs(spiky.rate_ppb[i] - clean.rate_ppb[i]));
+  }
+  std::printf("[measure] can locked, %d single %s 150..400 us (seed %u): after lock max |err| %.1f us (%.1f without),"
+              " rate moved by at most %.2f ppm, %d samples not locked\n",
+              spiky.spikes, kind == Spike::kLateSync ? "late Syncs" : "late stamps", seed,
+              spiky.after_lock.max_abs_ns / 1e3, clean.after_lock.max_abs_ns / 1e3, rate_moved_ppb / 1e3,
+              spiky.unlocked_after_lock);
+  EXPECT_GE(spiky.spikes, 8);
+  EXPECT_EQ(spiky.unlocked_after_lock, 0);
+  EXPECT_LT(spiky.after_lock.max_abs_ns, 50'000.0) << "within the steady state's bound (worst measured 36 us)";
+  EXPECT_LT(rate_moved_ppb, 5'000) << "a spike moves the rate by less than 5 ppm (before: 170..500 ppm)";
+}
+
+INSTANTIATE_TEST_SUITE_P(ClockServo, CanSingleSpikes,
+                         ::testing::Combine(::testing::Range(1u, 17u), ::testing::Values(Spike::kLateSync, Spike::kLateStamp)));
+
+// A real step of the time base by +150 us (inside the locked outlier gate): the first
+// samples are held out, the run of unlock_count of them unlocks the servo, which follows
+// and locks again at the new time.
+TEST(ClockServo, FollowsARealStepAfterARunOfHeldOutSamples) {
+  TestBoard b(board_at(40, 9'500'000));
+  const int64_t start = 1 * kSecond, step_at = start + 15 * kSecond, end = start + 40 * kSecond;
+  b.board.advance_to(start - 100 * kMs);
+  b.configure(can_config());
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int64_t> jitter(0, 50'000);
+  constexpr int64_t kStep = 150'000;
+  bool unlocked = false;
+  int64_t relocked_at = -1;
+  uint16_t seq = 0;
+  for (int64_t t = start; t < end; t += 100 * kMs, ++seq) {
+    const int64_t rx = t + jitter(rng) - (t >= step_at ? kStep : 0);
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::Sync{seq}}, rx);
+    b.host.send(LinkKind::kCan, protocol::Message{0, protocol::FollowUp{seq, t}}, rx + kMs);
+    const bool locked = b.sync_state() == SyncState::kLocked;
+    if (t == step_at - 100 * kMs) {
+      ASSERT_TRUE(locked) << "locked before the step";
+    }
+    if (t >= step_at && !locked) unlocked = true;
+    if (unlocked && locked && relocked_at < 0) relocked_at = t;
+  }
+  b.board.advance_to(end);
+  const protocol::StatusReport s = b.board.status();
+  // The board's rig time now runs kStep ahead of the true rig time the LED log records:
+  // its bit edges fall kStep early.
+  const EdgeTiming settled = edge_timing(b.board, protocol::TimeBase{kMs - kStep, kMs}, end - 10 * kSecond, end);
+  std::printf("[measure] can step +150 us while locked: unlocked %d, locked again %.1f s after the step, then max"
+              " |err| %.1f us\n",
+              unlocked, static_cast<double>(relocked_at - step_at) / 1e9, settled.max_abs_ns / 1e3);
+  EXPECT_TRUE(unlocked) << "a step is not held out for ever";
+  EXPECT_GE(relocked_at, 0);
+  EXPECT_EQ(s.sync_state, SyncState::kLocked);
+  EXPECT_LT(settled.max_abs_ns, 50'000.0);
+}
 
 // The lock state's hysteresis on the servo alone, with the loop gains at zero so that an
 // offset stays exactly what it is fed: a 1 GHz counter (a tick is a nanosecond), samples

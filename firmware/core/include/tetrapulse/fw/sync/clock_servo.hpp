@@ -24,7 +24,12 @@
 //
 // Noisy samples (CAN reception latency, one-sided: a frame is never received early)
 // pass a minimum-latency filter: the error fed to the loop is the largest of the last
-// `window` residuals against the current mapping.
+// `window` residuals against the current mapping. A late arrival therefore costs nothing,
+// but one sample ahead of that envelope (its FollowUp stamped late, a clock conversion
+// off by a preempted read) would lead the filter for `window` samples and swing the rate
+// by hundreds of ppm. So, while locked, a sample more than hold_ahead_ns above the envelope
+// of the remembered residuals is held out: counted as rejected, not remembered, no loop
+// update. unlock_count held in a row are a real step: the servo unlocks and follows them.
 #include <cstdint>
 
 #include "tetrapulse/fw/clock/tick.hpp"
@@ -40,6 +45,7 @@ struct ServoTuning {
   int64_t lock_threshold_ns = 300;      // |filtered error| below this ...
   uint8_t lock_count = 8;               // ... for this many consecutive samples: locked
   uint8_t unlock_count = 3;             // consecutive samples above 4 lock_threshold_ns: unlocked
+  int32_t hold_ahead_ns = 0;            // while locked, hold out a sample this far above the envelope (0 = off)
   int64_t gate_acquiring_ns = 50'000;   // outlier gate before lock
   int64_t gate_locked_ns = 1'000;       // outlier gate once locked
   uint32_t gate_growth_ppb = 10'000;    // the gate widens by this rate while no sample is accepted
@@ -85,7 +91,8 @@ class ClockServo {
   int32_t rate_ppb() const;  // the frequency estimate: the counter's rate error, ppb
   uint32_t holdover_ms(Tick now) const;
   uint32_t accepted() const { return accepted_; }
-  uint32_t rejected() const { return rejected_; }
+  uint32_t rejected() const { return rejected_; }  // outliers and held-out samples
+  uint32_t held_out() const { return held_out_; }
 
  private:
   enum class Phase : uint8_t { kStopped, kIdle, kFirstSample, kTracking, kLocked };
@@ -95,7 +102,11 @@ class ClockServo {
   };
 
   void step_to(Tick local, int64_t rig_ns);
+  // The largest residual of the remembered samples at `local` (INT64_MIN when none): the
+  // earliest arrival's; filtered_error is that or the new sample's own, if larger.
+  int64_t envelope(Tick local) const;
   int64_t filtered_error(Tick local, int64_t rig_ns) const;
+  bool hold_out(Tick local, int64_t error);
   int64_t gate(Tick local) const;
   void remember(Tick local, int64_t rig_ns);
 
@@ -116,11 +127,13 @@ class ClockServo {
   uint8_t good_in_row_ = 0;
   uint8_t far_in_row_ = 0;  // accepted samples above the unlock threshold, while locked
   uint8_t bad_in_row_ = 0;
+  uint8_t held_in_row_ = 0;  // samples held out in a row, while locked
   Sample window_[kMaxWindow];
   uint8_t window_count_ = 0;
   uint8_t window_next_ = 0;
   uint32_t accepted_ = 0;
   uint32_t rejected_ = 0;
+  uint32_t held_out_ = 0;
 };
 
 }  // namespace tetrapulse::fw
