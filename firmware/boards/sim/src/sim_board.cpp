@@ -153,6 +153,7 @@ void SimBoard::set_now(int64_t rig_ns) {
 
 void SimBoard::boot(bool stay_in_bootloader) {
   firmware_.reset();
+  bootloader_.reset();
   can_link_.reset();
   uart_link_.reset();
   usb_link_.reset();
@@ -166,7 +167,12 @@ void SimBoard::boot(bool stay_in_bootloader) {
   const fw::BootChoice choice = fw::choose_boot_slot(*flash_, layout, model, stay_in_bootloader);
   active_slot_ = choice.boot ? choice.slot : fw::kNoSlot;
   running_version_ = choice.boot ? choice.header.fw_version : 0;
-  if (!choice.boot) return;  // the bootloader waits (over USB DFU on a real board)
+  if (!choice.boot) {
+    bootloader_ = std::make_unique<SimBootloader>(*flash_, layout, model, hw_->can, hw_->clock,
+                                                  sim_bootloader_identity(model, options_.node_id));
+    last_poll_ = now_;
+    return;
+  }
 
   can_link_.emplace(hw_->can, options_.tick_hz, options_.node_id);
   uart_link_.emplace(hw_->serial);
@@ -193,6 +199,11 @@ void SimBoard::boot(bool stay_in_bootloader) {
 }
 
 void SimBoard::after_event() {
+  if (bootloader_) {
+    const fw::Tick ms = tick() / (clock_.tick_hz() / 1000);
+    if (const auto mode = bootloader_->poll(static_cast<uint32_t>(ms))) boot(*mode == protocol::RebootMode::kBootloader);
+    return;
+  }
   if (hw_->system.requested) {
     const protocol::RebootMode mode = *hw_->system.requested;
     hw_->system.requested.reset();
@@ -235,12 +246,16 @@ void SimBoard::sync_edge(int64_t rig_ns) {
 
 void SimBoard::can_frame(const protocol::CanFrame& frame, int64_t rig_ns) {
   advance_to(rig_ns);
-  if (!firmware_ || !can_link_ || !options_.can) return;
+  if (!options_.can || (!firmware_ && !bootloader_)) return;
   const protocol::CanNodeFilters& f = hw_->can.filters;
   if (!protocol::can_filter_matches(f.addressed, frame.id) && !protocol::can_filter_matches(f.broadcast, frame.id)) {
     return;
   }
-  can_link_->on_frame(frame, tick(), *firmware_);
+  if (bootloader_) {
+    bootloader_->can_link().on_frame(frame, tick(), bootloader_->commands());
+  } else {
+    can_link_->on_frame(frame, tick(), *firmware_);
+  }
   after_event();
 }
 
@@ -295,6 +310,10 @@ void SimBoard::set_clock_ppm(double ppm) { clock_.set_drift(now_, ppm); }
 
 void SimBoard::power_cycle() {
   flash_->restore_power();
+  reset();
+}
+
+void SimBoard::reset() {
   hw_->system.requested.reset();
   boot(false);
 }

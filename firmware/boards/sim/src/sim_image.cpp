@@ -15,7 +15,7 @@ std::vector<uint8_t> make_sim_image(const SimImageSpec& spec) {
     image[spec.vector_offset + i] = static_cast<uint8_t>(x);
   }
   protocol::ImageHeader h;
-  h.hw_model = protocol::HwModel::kSimulatedBoard;
+  h.hw_model = spec.hw_model;
   h.hw_revision_min = spec.hw_revision_min;
   h.hw_revision_max = spec.hw_revision_max;
   h.fw_version = spec.fw_version;

@@ -4,7 +4,8 @@
 // change exactly at scheduled ticks and log each change with its true rig time; its flash
 // can lose power at any write step; it has a sync input, a CAN controller, a USB device
 // and a UART, all carrying real protocol frames. It has a bootloader too: every reset
-// (Reboot, power cycle) picks a firmware slot with the core's boot selection.
+// (Reboot, power cycle) picks a firmware slot with the core's boot selection, and with no
+// valid slot or asked to stay it waits for an update over CAN or USB DFU (SimBootloader).
 //
 // Time is true rig time (integer ns). Everything happens in advance_to(t) order: the
 // caller moves time forward and feeds events at their rig times, never backwards.
@@ -21,6 +22,7 @@
 #include "tetrapulse/fw/storage/flash_layout.hpp"
 #include "tetrapulse/protocol/can_frame.hpp"
 #include "tetrapulse/protocol/response_messages.hpp"
+#include "tetrapulse/sim_board/sim_bootloader.hpp"
 #include "tetrapulse/sim_board/sim_flash.hpp"
 #include "tetrapulse/sim_board/sim_led_driver.hpp"
 #include "tetrapulse/sim_board/virtual_clock.hpp"
@@ -90,11 +92,17 @@ class SimBoard {
   SimFlash& flash() { return *flash_; }
   // Power off and on at once: RAM state is lost, the board boots from flash.
   void power_cycle();
+  // A reset with the power on (the watchdog, a reset button): RAM state is lost, the board
+  // boots from flash, and a power cut armed on the flash stays armed.
+  void reset();
 
   // The firmware, or null while the board sits in its bootloader (no valid image, or
   // Reboot{bootloader}).
   fw::Firmware* firmware() { return firmware_ ? &*firmware_ : nullptr; }
   const fw::Firmware* firmware() const { return firmware_ ? &*firmware_ : nullptr; }
+  // The bootloader's update paths while no application runs (null otherwise): CAN frames
+  // go to it, and a host drives its DFU interface (bootloader()->dfu()).
+  SimBootloader* bootloader() { return bootloader_.get(); }
   uint8_t active_slot() const { return active_slot_; }
   uint32_t running_version() const { return running_version_; }
   uint32_t boots() const { return boots_; }
@@ -119,6 +127,7 @@ class SimBoard {
   std::optional<fw::UartLink> uart_link_;
   std::optional<fw::UsbLink> usb_link_;
   std::optional<fw::Firmware> firmware_;
+  std::unique_ptr<SimBootloader> bootloader_;
   uint8_t active_slot_ = fw::kNoSlot;
   uint32_t running_version_ = 0;
   uint32_t boots_ = 0;

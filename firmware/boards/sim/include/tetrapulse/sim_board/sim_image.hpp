@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "tetrapulse/protocol/hw_model.hpp"
+
 namespace tetrapulse::sim_board {
 
 struct SimImageSpec {
@@ -14,6 +16,7 @@ struct SimImageSpec {
   uint8_t hw_revision_min = 0;
   uint8_t hw_revision_max = 255;
   uint32_t seed = 1;
+  protocol::HwModel hw_model = protocol::HwModel::kSimulatedBoard;  // another: a foreign image
 };
 
 std::vector<uint8_t> make_sim_image(const SimImageSpec& spec);
