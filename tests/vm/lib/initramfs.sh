@@ -6,7 +6,7 @@
 # shellcheck disable=SC2034 # used by run-vm
 VM_MODULES=(vcan can-raw configfs gpio-sim dummy_hcd libcomposite usb_f_fs)
 # Stock programs the tests drive.
-VM_TOOLS=(candump cansend gpioset gpioget gpiomon gpiodetect gpioinfo gpiofind lsusb dfu-util)
+VM_TOOLS=(candump cansend cangen gpioset gpioget gpiomon gpiodetect gpioinfo gpiofind lsusb dfu-util)
 
 # vm_stage_programs STAGE DIR PROGRAM...: copies the programs into STAGE/DIR
 # and the shared libraries ldd names into the same paths under STAGE.

@@ -99,6 +99,7 @@ BoardResult<tp::RebootMode> run_application(const LinuxBoardOptions& o, FileFlas
     if (!opened) return tl::unexpected(opened.error());
     usb = std::move(*opened);
     usb_link.emplace(*usb);
+    firmware.board().set_message_links(nullptr, &*usb_link);
     messages.emplace(*usb_link, firmware, clock,
                      tp::kUsbCapabilityBulkMessages | tp::kUsbCapabilityControlMessages | tp::kUsbCapabilityDfuRuntime);
     dfu.emplace(static_cast<fw::DfuRuntimeTarget&>(system), params);

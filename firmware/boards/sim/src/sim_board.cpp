@@ -70,15 +70,19 @@ class SimCanBus final : public fw::CanBus {
  public:
   std::vector<protocol::CanFrame> sent;
   protocol::CanNodeFilters filters{};
+  uint16_t errors = 0;
+  bool bus_off = false;
 
  private:
   protocol::Status do_send(const protocol::CanFrame& frame) override {
+    // Bus-off: the controller takes no frames off the board until it has recovered.
+    if (bus_off) return protocol::Error::kBusy;
     sent.push_back(frame);
     return {};
   }
   void do_set_filters(const protocol::CanNodeFilters& f) override { filters = f; }
-  uint16_t do_error_count() const override { return 0; }
-  bool do_bus_off() const override { return false; }
+  uint16_t do_error_count() const override { return errors; }
+  bool do_bus_off() const override { return bus_off; }
 };
 
 class SimSerial final : public fw::SerialPort {
@@ -194,6 +198,7 @@ void SimBoard::boot(bool stay_in_bootloader) {
   if (options_.gpio_sync_input) parts.board.capabilities |= protocol::capability::kGpioSyncInput;
   if (options_.two_level) parts.board.capabilities |= protocol::capability::kTwoLevel;
   firmware_.emplace(parts);
+  firmware_->board().set_message_links(&*uart_link_, &*usb_link_);
   firmware_->start();
   last_poll_ = now_;
 }
@@ -307,6 +312,11 @@ std::vector<uint8_t> SimBoard::take_uart_bytes() {
 }
 
 void SimBoard::set_clock_ppm(double ppm) { clock_.set_drift(now_, ppm); }
+
+void SimBoard::can_controller_error(bool bus_off) {
+  if (hw_->can.errors != UINT16_MAX) ++hw_->can.errors;
+  hw_->can.bus_off = bus_off;
+}
 
 void SimBoard::power_cycle() {
   flash_->restore_power();

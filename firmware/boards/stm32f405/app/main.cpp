@@ -144,6 +144,7 @@ int main() {
   static fw::UsbControl usb_control(usb_params, serial, usb, usb_answers, sizeof(usb_answers));
   static fw::UsbEndpointZero usb_ep0(usb_control);
   static fw::UsbLink usb_link(usb);
+  firmware.board().set_message_links(&uart_link, &usb_link);
   static fw::UsbMessageFunction usb_messages(usb_link, firmware, clock,
                                              tp::kUsbCapabilityBulkMessages | tp::kUsbCapabilityControlMessages |
                                                  tp::kUsbCapabilityDfuRuntime);

@@ -50,7 +50,9 @@ uint64_t BoardState::uptime_ms(Tick now) const { return now / (parts_.clock->tic
 protocol::StatusReport BoardState::status(Tick now) const {
   protocol::StatusReport s;
   sync_.report(now, s);
-  s.rx_malformed = diagnostics_.rx_malformed;
+  const uint32_t malformed = uint32_t{diagnostics_.rx_malformed} + (uart_ != nullptr ? uart_->transport_errors() : 0u) +
+                             (usb_ != nullptr ? usb_->transport_errors() : 0u);
+  s.rx_malformed = static_cast<uint16_t>(malformed > UINT16_MAX ? UINT16_MAX : malformed);
   if (parts_.can != nullptr) {
     const uint32_t errors = uint32_t{parts_.can->bus_errors()} + parts_.can->transport_errors();
     s.can_errors = static_cast<uint16_t>(errors > UINT16_MAX ? UINT16_MAX : errors);

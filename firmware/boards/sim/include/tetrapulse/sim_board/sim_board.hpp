@@ -83,6 +83,10 @@ class SimBoard {
   // Every LED change applied since construction, with local tick and true rig time.
   const SimLedDriver& leds() const { return *leds_; }
 
+  // The CAN controller reports an error (its counter counts it): bus-off from now on (it
+  // sends nothing), or back on the bus / still error-active or -passive.
+  void can_controller_error(bool bus_off);
+
   // The crystal changes from now on (holdover tests).
   void set_clock_ppm(double ppm);
   const VirtualClock& clock() const { return clock_; }

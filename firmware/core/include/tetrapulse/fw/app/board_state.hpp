@@ -12,6 +12,8 @@
 #include "tetrapulse/fw/leds/led_driver.hpp"
 #include "tetrapulse/fw/leds/led_log.hpp"
 #include "tetrapulse/fw/links/can_link.hpp"
+#include "tetrapulse/fw/links/uart_link.hpp"
+#include "tetrapulse/fw/links/usb_link.hpp"
 #include "tetrapulse/fw/storage/flash.hpp"
 #include "tetrapulse/fw/storage/flash_layout.hpp"
 #include "tetrapulse/fw/storage/record_store.hpp"
@@ -85,6 +87,12 @@ class BoardState {
   const Diagnostics& diagnostics() const { return diagnostics_; }
 
   uint64_t uptime_ms(Tick now) const;
+  // StatusReport.rx_malformed counts the messages that failed to decode and, once set
+  // here, the broken frames of the board's UART and USB links (either may be null).
+  void set_message_links(const UartLink* uart, const UsbLink* usb) {
+    uart_ = uart;
+    usb_ = usb;
+  }
   protocol::StatusReport status(Tick now) const;
 
   // Set when a request was answered on some link (boot confirmation needs one).
@@ -92,6 +100,8 @@ class BoardState {
 
  private:
   FirmwareParts parts_;
+  const UartLink* uart_ = nullptr;
+  const UsbLink* usb_ = nullptr;
   protocol::Config config_;
   RecordStore store_;
   LedLog led_log_;

@@ -1,0 +1,61 @@
+#!/bin/sh
+# CAN faults against the Linux board on vcan0 while `tetrapulse sync --can` keeps it locked:
+#  - a bus at 80 % load: cangen sends 8-byte extended frames from another node at 80 % of
+#    a 1 Mbit/s bus's frame rate (about 135 bits a frame: 5900 frames/s) for 8 s; the
+#    board's kernel filters drop them, and it must stay locked;
+#  - error frames as a controller reports them (linux/can/error.h), injected on the bus:
+#    error-passive, bus-off, restarted. The board counts them, `tetrapulse status` shows
+#    BUS-OFF while it lasts and the count after, and the host's own link says bus-off in
+#    one line with a non-zero exit; sync stays locked (Sync frames keep coming on vcan).
+set -eu
+. /lib/tetrapulse/vm-lib.sh
+. /lib/tetrapulse/board-lib.sh
+
+ip link add dev vcan0 type vcan || fail "cannot create vcan0"
+ip link set up vcan0
+tetrapulse-board image --fw-version 1.0.0 --payload-size 4096 --out /tmp/cf-v1.img
+trap 'board_stop; kill "${gen_pid:-}" 2>/dev/null || :' EXIT
+board_start /tmp/board-cf.txt --flash /tmp/cf-flash.bin --factory-image /tmp/cf-v1.img --node 3 \
+  --can vcan0 --clock-ppm 40 --report-clock || fail "the board did not start on vcan0"
+tetrapulse config --can vcan0:3 --sync-source can >/dev/null || fail "tetrapulse config --sync-source can failed"
+
+tetrapulse sync --can vcan0 --can-rate 10 --rig-offset-ns 1000000000000 --duration-s 40 >/tmp/cf-sync.txt 2>&1 &
+sync_pid=$!
+wait_for 15 grep -q 'clock .* sync locked' /tmp/board-cf.txt || { tail -5 /tmp/board-cf.txt; fail "no lock within 15 s"; }
+reports_locked=$(board_count /tmp/board-cf.txt 'clock ')
+
+# 80 % load: -g is the gap in ms between frames (0.17 ms: 5900 frames/s), node 9's ids.
+cangen vcan0 -g 0.17 -e -I 12345609 -L 8 -D i -n 47000 &
+gen_pid=$!
+wait "$gen_pid" || fail "cangen failed"
+gen_pid=
+sent=$(ip -s link show vcan0 | awk '/TX:/ { getline; print $2; exit }')
+echo "canfaults: cangen done, vcan0 has sent $sent frames"
+status=$(tetrapulse status --can vcan0:3 --json) || fail "status under load failed"
+[ "$(json_field "$status" sync_state)" = locked ] || fail "under 80 % load the board is $(json_field "$status" sync_state)"
+unlocked=$(sed -n "$((reports_locked + 1)),\$p" /tmp/board-cf.txt | grep ' clock ' | grep -vc 'sync locked' || :)
+[ "$unlocked" -eq 0 ] || { grep ' clock ' /tmp/board-cf.txt; fail "$unlocked clock reports out of lock under load"; }
+echo "canfaults: locked all through the load ($(board_count /tmp/board-cf.txt 'clock ') clock reports)"
+
+# Error-passive: CAN_ERR_CRTL (0x4) with data[1] = RX and TX passive (0x10 | 0x20).
+cansend vcan0 20000004#0030000000000000
+# Bus-off (0x40): the board says so in its status, the host's link refuses.
+cansend vcan0 20000040#0000000000000000
+wait_for 5 sh -c 'tetrapulse status --can vcan0:3 --json 2>/dev/null | grep -q "\"can_bus_off\": true"' || {
+  tetrapulse status --can vcan0:3 || :
+  fail "the board's status does not show bus-off"
+}
+text=$(tetrapulse status --can vcan0:3 2>&1) || :
+echo "canfaults: status during bus-off: $text"
+echo "$text" | grep -q 'BUS-OFF' || fail "status text does not say BUS-OFF: $text"
+# Restarted (0x100): the board is back on the bus; its error count stays.
+cansend vcan0 20000100#0000000000000000
+wait_for 5 sh -c 'tetrapulse status --can vcan0:3 --json 2>/dev/null | grep -q "\"can_bus_off\": false"' ||
+  fail "the board's status still shows bus-off after the restart"
+status=$(tetrapulse status --can vcan0:3 --json)
+echo "$status"
+errors=$(json_field "$status" can_errors)
+[ "$errors" -ge 3 ] || fail "the board counted $errors CAN errors, not at least 3"
+[ "$(json_field "$status" sync_state)" = locked ] || fail "after the error frames the board is $(json_field "$status" sync_state)"
+wait "$sync_pid" || { cat /tmp/cf-sync.txt; fail "tetrapulse sync --can failed"; }
+echo "canfaults: error-passive, bus-off and restart shown; $errors CAN errors counted; still locked"
