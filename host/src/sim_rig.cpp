@@ -1,5 +1,7 @@
 #include "tetrapulse/host/sim_rig.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "tetrapulse/host/sim_board_link.hpp"
@@ -160,6 +162,14 @@ void HostSyncedRig::run_until(int64_t rig_ns) {
     if (!pulsed) failure_ = pulsed.error();
   }
   run_others_until(rig_ns);
+}
+
+void HostSyncedRig::forget_before(int64_t rig_ns) {
+  const auto first_kept = std::partition_point(exposures_.begin(), exposures_.end(),
+                                               [rig_ns](const Exposure& e) { return e.timestamp_ns < rig_ns; });
+  forgotten_exposures_ += static_cast<uint64_t>(first_kept - exposures_.begin());
+  exposures_.erase(exposures_.begin(), first_kept);
+  for (auto& sim : sims_) sim->forget_led_changes_before(rig_ns);
 }
 
 sim::BoardEmitterFactory host_board_emitters(std::shared_ptr<HostSyncedRig> rig) {

@@ -1,7 +1,8 @@
 #!/bin/sh
 # CAN faults against the Linux board on vcan0 while `tetrapulse sync --can` keeps it locked:
-#  - a bus at 80 % load: cangen sends 8-byte extended frames from another node at 80 % of
-#    a 1 Mbit/s bus's frame rate (about 135 bits a frame: 5900 frames/s) for 8 s; the
+#  - a loaded bus: cangen sends 8-byte extended frames of another node in bursts of 16
+#    every 2 ms (8000 frames/s asked; the rate reached is measured and reported against a
+#    1 Mbit/s bus, about 135 bits a frame: 7400 frames/s is 100 %, 5900 is 80 %); the
 #    board's kernel filters drop them, and it must stay locked;
 #  - error frames as a controller reports them (linux/can/error.h), injected on the bus:
 #    error-passive, bus-off, restarted. The board counts them, `tetrapulse status` shows
@@ -24,16 +25,23 @@ sync_pid=$!
 wait_for 15 grep -q 'clock .* sync locked' /tmp/board-cf.txt || { tail -5 /tmp/board-cf.txt; fail "no lock within 15 s"; }
 reports_locked=$(board_count /tmp/board-cf.txt 'clock ')
 
-# 80 % load: -g is the gap in ms between frames (0.17 ms: 5900 frames/s), node 9's ids.
-cangen vcan0 -g 0.17 -e -I 12345609 -L 8 -D i -n 47000 &
+# The load: bursts of 16 frames every 2 ms, node 9's ids.
+uptime_s() { cut -d' ' -f1 /proc/uptime; }
+tx_before=$(cat /sys/class/net/vcan0/statistics/tx_packets)
+load_from=$(uptime_s)
+cangen vcan0 -g 2 -c 16 -e -I 12345609 -L 8 -D i -n 64000 &
 gen_pid=$!
 wait "$gen_pid" || fail "cangen failed"
 gen_pid=
-sent=$(ip -s link show vcan0 | awk '/TX:/ { getline; print $2; exit }')
-echo "canfaults: cangen done, vcan0 has sent $sent frames"
+load_to=$(uptime_s)
+tx=$(($(cat /sys/class/net/vcan0/statistics/tx_packets) - tx_before))
+rate=$(awk -v n="$tx" -v a="$load_from" -v b="$load_to" 'BEGIN { printf "%d", n / (b - a) }')
+echo "canfaults: $tx frames in $load_from..$load_to s: $rate frames/s ($((rate * 100 / 7400)) % of a 1 Mbit/s bus)"
+[ "$rate" -ge 5900 ] || echo "canfaults: note: below 80 % of a 1 Mbit/s bus (the emulated machine's limit)"
 status=$(tetrapulse status --can vcan0:3 --json) || fail "status under load failed"
-[ "$(json_field "$status" sync_state)" = locked ] || fail "under 80 % load the board is $(json_field "$status" sync_state)"
-unlocked=$(sed -n "$((reports_locked + 1)),\$p" /tmp/board-cf.txt | grep ' clock ' | grep -vc 'sync locked' || :)
+[ "$(json_field "$status" sync_state)" = locked ] || fail "under load the board is $(json_field "$status" sync_state)"
+# Every clock report after the lock's, through the load, says locked.
+unlocked=$(awk -v skip="$reports_locked" '/ clock / { n++; if (n > skip && $0 !~ /sync locked/) bad++ } END { print bad + 0 }' /tmp/board-cf.txt)
 [ "$unlocked" -eq 0 ] || { grep ' clock ' /tmp/board-cf.txt; fail "$unlocked clock reports out of lock under load"; }
 echo "canfaults: locked all through the load ($(board_count /tmp/board-cf.txt 'clock ') clock reports)"
 
@@ -45,9 +53,11 @@ wait_for 5 sh -c 'tetrapulse status --can vcan0:3 --json 2>/dev/null | grep -q "
   tetrapulse status --can vcan0:3 || :
   fail "the board's status does not show bus-off"
 }
-text=$(tetrapulse status --can vcan0:3 2>&1) || :
-echo "canfaults: status during bus-off: $text"
-echo "$text" | grep -q 'BUS-OFF' || fail "status text does not say BUS-OFF: $text"
+wait_for 5 sh -c 'tetrapulse status --can vcan0:3 >/tmp/cf-status.txt 2>&1 && grep -q BUS-OFF /tmp/cf-status.txt' || {
+  cat /tmp/cf-status.txt
+  fail "status text does not say BUS-OFF"
+}
+echo "canfaults: status during bus-off: $(cat /tmp/cf-status.txt)"
 # Restarted (0x100): the board is back on the bus; its error count stays.
 cansend vcan0 20000100#0000000000000000
 wait_for 5 sh -c 'tetrapulse status --can vcan0:3 --json 2>/dev/null | grep -q "\"can_bus_off\": false"' ||

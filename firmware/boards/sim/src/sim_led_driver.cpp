@@ -58,6 +58,15 @@ void SimLedDriver::record(uint8_t marker, uint16_t duty, fw::Tick tick, long dou
   per_marker_[marker].push_back(change);
 }
 
+void SimLedDriver::forget_before(long double rig_ns) {
+  const auto before = [rig_ns](const AppliedLedChange& c) { return c.rig_ns < rig_ns; };
+  for (std::vector<AppliedLedChange>& changes : per_marker_) {
+    const auto first_kept = std::partition_point(changes.begin(), changes.end(), before);
+    if (first_kept != changes.begin()) changes.erase(changes.begin(), std::prev(first_kept));
+  }
+  log_.erase(log_.begin(), std::partition_point(log_.begin(), log_.end(), before));
+}
+
 double SimLedDriver::mean_duty(uint8_t marker, long double t0, long double t1) const {
   if (!(t1 > t0)) return 0;
   const std::vector<AppliedLedChange>& changes = per_marker_[marker];

@@ -50,6 +50,11 @@ class HostSyncedRig {
   // The trigger's exposures so far, numbered as the scenario's frames (frame 0 at
   // frames.start_ns; the lead-in's pulses before it are left out).
   const std::vector<Exposure>& exposures() const { return exposures_; }
+  // Exposures triggered so far, the forgotten ones included.
+  uint64_t exposure_count() const { return forgotten_exposures_ + exposures_.size(); }
+  // Long runs: exposures and the boards' LED changes before rig time t are dropped, so
+  // memory stays bounded (exposures() and the boards' logs then start there).
+  void forget_before(int64_t rig_ns);
   // CAN Sync/FollowUp pairs sent so far.
   uint64_t can_syncs() const { return can_syncs_; }
   // The first sync master error, if any (the rig stops syncing then).
@@ -78,6 +83,7 @@ class HostSyncedRig {
   int64_t next_coarse_ns_ = 0;
   uint16_t coarse_seq_ = 0;
   std::vector<Exposure> exposures_;
+  uint64_t forgotten_exposures_ = 0;
   std::optional<HostError> failure_;
 };
 

@@ -82,6 +82,8 @@ class SimBoard {
 
   // Every LED change applied since construction, with local tick and true rig time.
   const SimLedDriver& leds() const { return *leds_; }
+  // Long runs: the LED log before rig time t is dropped (SimLedDriver::forget_before).
+  void forget_led_changes_before(int64_t rig_ns) { leds_->forget_before(static_cast<long double>(rig_ns)); }
 
   // The CAN controller reports an error (its counter counts it): bus-off from now on (it
   // sends nothing), or back on the bus / still error-active or -passive.

@@ -39,6 +39,9 @@ class SimLedDriver final : public fw::LedDriver {
   const std::vector<AppliedLedChange>& log() const { return log_; }
   // Changes of one marker, in time order.
   const std::vector<AppliedLedChange>& log(uint8_t marker) const { return per_marker_[marker]; }
+  // Drops the changes before rig time t except each marker's last one (its level at t), so
+  // a long run's log stays bounded; log() and mean_duty() then start there.
+  void forget_before(long double rig_ns);
   // Mean duty (0..1) of `marker` over true rig times [t0, t1).
   double mean_duty(uint8_t marker, long double t0, long double t1) const;
 
