@@ -2,6 +2,8 @@
 
 #include <linux/can/error.h>
 
+#include <random>
+
 #include <fmt/format.h>
 
 #include "tetrapulse/host/rig_clock.hpp"
@@ -15,6 +17,33 @@ uint8_t can_priority_for(MessageType type) {
   if (protocol::is_time_sync(type)) return protocol::kCanPrioritySync;
   return protocol::is_response(type) ? protocol::kCanPriorityResponse : protocol::kCanPriorityRequest;
 }
+
+const char* can_controller_state_name(CanControllerState state) {
+  switch (state) {
+    case CanControllerState::kActive: return "error-active";
+    case CanControllerState::kWarning: return "error-warning";
+    case CanControllerState::kPassive: return "error-passive";
+    case CanControllerState::kBusOff: return "bus-off";
+  }
+  return "unknown";
+}
+
+namespace {
+
+// The controller's state after an error frame of `error_class` with `data` (error.h).
+CanControllerState next_state(CanControllerState state, uint32_t error_class, const std::array<uint8_t, 8>& data) {
+  if ((error_class & CAN_ERR_BUSOFF) != 0) return CanControllerState::kBusOff;
+  if ((error_class & CAN_ERR_RESTARTED) != 0) return CanControllerState::kActive;
+  if ((error_class & CAN_ERR_CRTL) != 0) {
+    const uint8_t c = data[1];
+    if ((c & (CAN_ERR_CRTL_RX_PASSIVE | CAN_ERR_CRTL_TX_PASSIVE)) != 0) return CanControllerState::kPassive;
+    if ((c & (CAN_ERR_CRTL_RX_WARNING | CAN_ERR_CRTL_TX_WARNING)) != 0) return CanControllerState::kWarning;
+    if ((c & CAN_ERR_CRTL_ACTIVE) != 0) return CanControllerState::kActive;
+  }
+  return state;
+}
+
+}  // namespace
 
 std::string can_link_name(const std::string& interface_name, uint8_t peer_node) {
   return peer_node == protocol::kCanBroadcastNode ? fmt::format("can:{}:all", interface_name)
@@ -36,15 +65,17 @@ HostResult<std::unique_ptr<CanLink>> CanLink::open(const std::string& interface_
     e.device = name;
     return tl::unexpected(e);
   }
-  return std::make_unique<CanLink>(std::move(*port), local_node, peer_node);
+  // Transfer-ids from a random start: see CanTransferSender (a second `tetrapulse status`
+  // within a second of the first would otherwise look like its repeat to the board).
+  return std::make_unique<CanLink>(std::move(*port), local_node, peer_node, static_cast<uint8_t>(std::random_device{}()));
 }
 
-CanLink::CanLink(std::unique_ptr<CanPort> port, uint8_t local_node, uint8_t peer_node)
+CanLink::CanLink(std::unique_ptr<CanPort> port, uint8_t local_node, uint8_t peer_node, uint8_t first_transfer_id)
     : Link(can_link_name(port->interface_name(), peer_node)),
       port_(std::move(port)),
       local_(local_node),
       peer_(peer_node),
-      sender_(local_node),
+      sender_(local_node, first_transfer_id),
       receiver_(sessions_, kSessions) {}
 
 HostResult<void> CanLink::send_bytes(protocol::ByteView message) {
@@ -72,7 +103,8 @@ HostResult<void> CanLink::send_bytes(protocol::ByteView message) {
 
 std::string CanLink::silence_hint() const {
   if (error_frames_ == 0) return {};
-  return fmt::format(" ({} CAN error frames, the last: {})", error_frames_, can_error_class_names(last_error_class_));
+  return fmt::format(" ({} CAN error frames, the last: {}; the controller is {})", error_frames_,
+                     can_error_class_names(last_error_class_), can_controller_state_name(state_));
 }
 
 HostResult<std::optional<RawMessage>> CanLink::receive_bytes(int64_t timeout_ns) {
@@ -91,6 +123,7 @@ HostResult<std::optional<RawMessage>> CanLink::receive_bytes(int64_t timeout_ns)
     if (e.kind == CanPortEvent::Kind::kError) {
       ++error_frames_;
       last_error_class_ = e.error_class;
+      state_ = next_state(state_, e.error_class, e.error_data);
       if ((e.error_class & CAN_ERR_RESTARTED) != 0) bus_off_ = false;
       if ((e.error_class & CAN_ERR_BUSOFF) != 0) {
         bus_off_ = true;

@@ -81,12 +81,13 @@ void FakeCanBus::transmit(Port* from, const protocol::CanFrame& frame) {
   }
 }
 
-void FakeCanBus::raise_error(uint32_t error_class) {
+void FakeCanBus::raise_error(uint32_t error_class, const std::array<uint8_t, 8>& data) {
   for (Port* p : ports_) {
     if (!p->options().error_frames) continue;
     CanPortEvent e;
     e.kind = CanPortEvent::Kind::kError;
     e.error_class = error_class;
+    e.error_data = data;
     e.timestamp_ns = monotonic_now_ns();
     p->push(e);
   }

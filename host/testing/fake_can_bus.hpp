@@ -3,6 +3,7 @@
 // other through acceptance filters, nodes (responders) that answer frames at once, error
 // frames on demand and transmit timestamps like SocketCAN's. Single-threaded: a port's
 // next() returns what is queued, or waits out its timeout when nothing is.
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -25,7 +26,7 @@ class FakeCanBus {
   // A node that sees every frame on the bus and answers at once.
   void attach(Node node) { nodes_.push_back(std::move(node)); }
   // An error frame (linux/can/error.h class bits) reaching every port.
-  void raise_error(uint32_t error_class);
+  void raise_error(uint32_t error_class, const std::array<uint8_t, 8>& data = {});
   // Every data frame that went on the bus, in order.
   const std::vector<protocol::CanFrame>& frames() const { return log_; }
   // Frames lost on the way to nodes when this returns true (a lossy bus).

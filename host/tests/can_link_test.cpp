@@ -171,7 +171,8 @@ TEST(CanLink, ErrorFramesExplainASilence) {
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().kind, HostErrorKind::kTimeout);
   EXPECT_EQ(r.error().what(),
-            "can:vcan0:4: get_info: no answer within 30 ms (1 CAN error frames, the last: no acknowledgement)");
+            "can:vcan0:4: get_info: no answer within 30 ms (1 CAN error frames, the last: no acknowledgement; the"
+            " controller is error-active)");
 }
 
 TEST(CanLink, IgnoresOtherNodesAndCountsForeignIdentifiers) {

@@ -1,6 +1,7 @@
-// rig_soak [--seconds N | --long]: the soak of host_rig_reliability_test (rig_reliability.hpp)
-// for N seconds of rig time (default 600; --long: 4 hours), a line a minute, the figures at
-// the end. Exit 0 when every check holds, 1 otherwise.
+// rig_soak [--seconds N | --long] [--no-localizer]: the soak of host_rig_reliability_test
+// (rig_reliability.hpp) for N seconds of rig time (default 600; --long: 4 hours), a line a
+// minute, the figures at the end; --no-localizer leaves out the minute's burst of frames
+// (to tell the rig's memory from the localizer's). Exit 0 when every check holds.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -11,13 +12,16 @@
 int main(int argc, char** argv) {
   using namespace tetrapulse::host::testing;
   long long seconds = 600;
+  int burst_frames = 60;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--long") == 0) {
       seconds = 4 * 3600;
+    } else if (std::strcmp(argv[i], "--no-localizer") == 0) {
+      burst_frames = 0;
     } else if (std::strcmp(argv[i], "--seconds") == 0 && i + 1 < argc) {
       seconds = std::atoll(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: rig_soak [--seconds N | --long]\n");
+      std::fprintf(stderr, "usage: rig_soak [--seconds N | --long] [--no-localizer]\n");
       return 2;
     }
   }
@@ -25,7 +29,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rig_soak: --seconds must be at least 60\n");
     return 2;
   }
-  const SoakReport r = soak(mixed_sync_scenario(4), seconds, 60, [](const std::string& line) {
+  const SoakReport r = soak(mixed_sync_scenario(4), seconds, burst_frames, [](const std::string& line) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
   });

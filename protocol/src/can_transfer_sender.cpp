@@ -72,7 +72,7 @@ uint8_t CanTransferSender::next_transfer_id(uint8_t type, uint8_t destination) {
       }
       if (s.last_use < slot->last_use) slot = &s;
     }
-    *slot = CounterSlot{type, destination, 0, true, 0};
+    *slot = CounterSlot{type, destination, first_transfer_id_, true, 0};
   }
   slot->last_use = clock_;
   const uint8_t id = slot->next_transfer_id;

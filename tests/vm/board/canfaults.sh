@@ -1,7 +1,7 @@
 #!/bin/sh
 # CAN faults against the Linux board on vcan0 while `tetrapulse sync --can` keeps it locked:
-#  - a loaded bus: cangen sends 8-byte extended frames of another node in bursts of 16
-#    every 2 ms (8000 frames/s asked; the rate reached is measured and reported against a
+#  - a loaded bus: cangen sends 8-byte extended frames of another node in bursts of 24
+#    every 2 ms (12000 frames/s asked; the rate reached is measured and reported against a
 #    1 Mbit/s bus, about 135 bits a frame: 7400 frames/s is 100 %, 5900 is 80 %); the
 #    board's kernel filters drop them, and it must stay locked;
 #  - error frames as a controller reports them (linux/can/error.h), injected on the bus:
@@ -25,11 +25,11 @@ sync_pid=$!
 wait_for 15 grep -q 'clock .* sync locked' /tmp/board-cf.txt || { tail -5 /tmp/board-cf.txt; fail "no lock within 15 s"; }
 reports_locked=$(board_count /tmp/board-cf.txt 'clock ')
 
-# The load: bursts of 16 frames every 2 ms, node 9's ids.
+# The load: bursts of 24 frames every 2 ms (the emulated machine oversleeps), node 9's ids.
 uptime_s() { cut -d' ' -f1 /proc/uptime; }
 tx_before=$(cat /sys/class/net/vcan0/statistics/tx_packets)
 load_from=$(uptime_s)
-cangen vcan0 -g 2 -c 16 -e -I 12345609 -L 8 -D i -n 64000 &
+cangen vcan0 -g 2 -c 24 -e -I 12345609 -L 8 -D i -n 72000 &
 gen_pid=$!
 wait "$gen_pid" || fail "cangen failed"
 gen_pid=

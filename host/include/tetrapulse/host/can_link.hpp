@@ -22,6 +22,12 @@ namespace tetrapulse::host {
 // The priority a message of `type` travels with (SPEC.md §4.1).
 uint8_t can_priority_for(protocol::MessageType type);
 
+// The host's CAN controller as its error frames tell it (linux/can/error.h): error-active,
+// warning (an error counter past 96), error-passive (past 127), bus-off; a restart makes it
+// error-active again.
+enum class CanControllerState : uint8_t { kActive, kWarning, kPassive, kBusOff };
+const char* can_controller_state_name(CanControllerState state);
+
 class CanLink : public Link {
  public:
   static constexpr size_t kSessions = 8;
@@ -30,11 +36,13 @@ class CanLink : public Link {
   static HostResult<std::unique_ptr<CanLink>> open(const std::string& interface_name, uint8_t peer_node,
                                                    uint8_t local_node = protocol::kCanHostNode);
   // Over any port (tests use a fake); the port should already filter for `local_node`.
-  CanLink(std::unique_ptr<CanPort> port, uint8_t local_node, uint8_t peer_node);
+  // Transfer-ids start at `first_transfer_id` (open() picks it at random).
+  CanLink(std::unique_ptr<CanPort> port, uint8_t local_node, uint8_t peer_node, uint8_t first_transfer_id = 0);
 
   uint8_t local_node() const { return local_; }
   uint8_t peer_node() const { return peer_; }
   bool bus_off() const { return bus_off_; }
+  CanControllerState controller_state() const { return state_; }
   uint32_t error_frames() const { return error_frames_; }
   const protocol::CanReceiverStats& receiver_stats() const { return receiver_.stats(); }
 
@@ -51,6 +59,7 @@ class CanLink : public Link {
   protocol::CanReceiveSession sessions_[kSessions];
   protocol::CanTransferReceiver receiver_;
   bool bus_off_ = false;
+  CanControllerState state_ = CanControllerState::kActive;
   uint32_t error_frames_ = 0;
   uint32_t last_error_class_ = 0;
 };

@@ -41,7 +41,12 @@ class CanTransferSender {
  public:
   static constexpr size_t kCounterSlots = 16;
 
-  explicit CanTransferSender(uint8_t source_node) : source_(source_node) {}
+  // `first_transfer_id`: where every (type, destination) counter starts. A host process
+  // picks it at random: a receiver takes a single-frame transfer with the tail byte of the
+  // session's previous one for a repeat, so a new process starting where the last one did
+  // would have its first request ignored if it came within the transfer timeout.
+  explicit CanTransferSender(uint8_t source_node, uint8_t first_transfer_id = 0)
+      : source_(source_node), first_transfer_id_(static_cast<uint8_t>(first_transfer_id % kCanTransferIdModulo)) {}
 
   uint8_t source() const { return source_; }
 
@@ -81,6 +86,7 @@ class CanTransferSender {
   };
 
   uint8_t source_;
+  uint8_t first_transfer_id_ = 0;
   uint32_t clock_ = 0;
   CounterSlot slots_[kCounterSlots];
 };
