@@ -1,7 +1,9 @@
 #!/bin/sh
 # The gadget unbound from its UDC in the middle of `tetrapulse flash`: the CLI says that
 # the board left the bus during the download, and the board stays recoverable: once the
-# gadget is back, a second `tetrapulse flash` installs the image.
+# gadget is back, a second `tetrapulse flash` installs the image. Then unbound in the middle
+# of `tetrapulse status --watch` (a command every 50 ms): one line naming the board and a
+# non-zero exit; bound again, status answers.
 set -eu
 . /lib/tetrapulse/vm-lib.sh
 . /lib/tetrapulse/board-lib.sh
@@ -35,3 +37,19 @@ tetrapulse flash --usb "$BOARD_SERIAL" /tmp/unbind-v2.img >/tmp/flash2.txt 2>&1 
 cat /tmp/flash2.txt
 grep -q 'now running 2.0.0' /tmp/flash2.txt || fail "after the second flash the board does not run 2.0.0"
 echo "unbind: the board recovered; the second flash installed 2.0.0"
+
+# Mid-command: status every 50 ms while the gadget goes away.
+board_wait_version 2.0.0 20 || fail "the board does not answer as 2.0.0 after the flash"
+tetrapulse status --usb "$BOARD_SERIAL" --watch --interval-ms 50 >/tmp/watch.txt 2>&1 &
+watch_pid=$!
+wait_for 10 grep -q 'sync' /tmp/watch.txt || { cat /tmp/watch.txt; fail "status --watch printed nothing"; }
+bound=$(cat "$udc")
+echo "" >"$udc"
+rc=0
+wait "$watch_pid" || rc=$?
+echo "unbind: status --watch after the unbind (exit $rc): $(tail -1 /tmp/watch.txt)"
+[ "$rc" -ne 0 ] || fail "tetrapulse status --watch went on as if the board were there"
+tail -1 /tmp/watch.txt | grep -q "^tetrapulse status: usb:" || fail "the last line does not name the board: $(tail -1 /tmp/watch.txt)"
+echo "$bound" >"$udc"
+wait_for 20 sh -c "tetrapulse status --usb $BOARD_SERIAL >/dev/null 2>&1" || fail "status does not answer after rebinding"
+echo "unbind: status answers again after rebinding"
