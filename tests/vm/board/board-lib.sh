@@ -22,6 +22,17 @@ board_usb_args() {
   echo "--flash $1 --serial $BOARD_SERIAL --usb-gadget $BOARD_GADGET --usb-mount /dev/ffs/$BOARD_GADGET"
 }
 
+# board_start_can NAME: vcan0 up and a board on it as node 3, its clock 40 ppm fast and
+# reported every second, with its log in /tmp/board-NAME.txt and its flash in
+# /tmp/NAME-flash.bin (factory image 1.0.0).
+board_start_can() {
+  ip link add dev vcan0 type vcan || fail "cannot create vcan0"
+  ip link set up vcan0
+  tetrapulse-board image --fw-version 1.0.0 --payload-size 4096 --out "/tmp/$1-v1.img"
+  board_start "/tmp/board-$1.txt" --flash "/tmp/$1-flash.bin" --factory-image "/tmp/$1-v1.img" --node 3 \
+    --can vcan0 --clock-ppm 40 --report-clock || fail "the board did not start on vcan0"
+}
+
 # board_stop: ends the board and removes its gadget. Safe under set -e, for EXIT traps.
 board_stop() {
   if [ -f /run/board.pid ]; then

@@ -8,12 +8,8 @@ set -eu
 . /lib/tetrapulse/vm-lib.sh
 . /lib/tetrapulse/board-lib.sh
 
-ip link add dev vcan0 type vcan || fail "cannot create vcan0"
-ip link set up vcan0
-tetrapulse-board image --fw-version 1.0.0 --payload-size 4096 --out /tmp/can-v1.img
 trap 'board_stop' EXIT
-board_start /tmp/board-can.txt --flash /tmp/can-flash.bin --factory-image /tmp/can-v1.img --node 3 \
-  --can vcan0 --clock-ppm 40 --report-clock || fail "the board did not start on vcan0"
+board_start_can can
 
 info=$(tetrapulse info --can vcan0:3 --json) || fail "tetrapulse info over CAN failed: $info"
 echo "$info"
