@@ -26,6 +26,7 @@ board_usb_args() {
 # reported every second, with its log in /tmp/board-NAME.txt and its flash in
 # /tmp/NAME-flash.bin (factory image 1.0.0).
 board_start_can() {
+  ip link del dev vcan0 2>/dev/null || :  # an earlier script of the same boot left it
   ip link add dev vcan0 type vcan || fail "cannot create vcan0"
   ip link set up vcan0
   tetrapulse-board image --fw-version 1.0.0 --payload-size 4096 --out "/tmp/$1-v1.img"
