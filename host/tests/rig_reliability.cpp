@@ -1,5 +1,6 @@
 #include "rig_reliability.hpp"
 
+#include <malloc.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -84,6 +85,11 @@ long resident_kib() {
   return got == 2 ? resident * (::sysconf(_SC_PAGESIZE) / 1024) : -1;
 }
 
+long heap_in_use_kib() {
+  const struct mallinfo2 m = ::mallinfo2();
+  return static_cast<long>((m.uordblks + m.hblkhd) / 1024);
+}
+
 SoakReport soak(const sim::Scenario& scenario, int64_t rig_seconds, int burst_frames,
                 void (*progress)(const std::string&)) {
   SoakReport report;
@@ -148,10 +154,14 @@ SoakReport soak(const sim::Scenario& scenario, int64_t rig_seconds, int burst_fr
       // What forget_before kept: each marker's level at t (counted again next second).
       report.boards[i].led_changes -= rig.board(i).leds().log().size();
     }
-    if (second == 60) report.rss_kib_after_warmup = resident_kib();
+    if (second == 60) {
+      report.rss_kib_after_warmup = resident_kib();
+      report.heap_kib_after_warmup = heap_in_use_kib();
+    }
     if (progress != nullptr && second % 60 == 0) {
-      progress(fmt::format("rig {} s: {} exposures, {} CAN syncs, {} frames localized, {} poses, RSS {} KiB", second,
-                           rig.exposure_count(), rig.can_syncs(), loc.frames, loc.poses, resident_kib()));
+      progress(fmt::format("rig {} s: {} exposures, {} CAN syncs, {} frames localized, {} poses, heap {} KiB, RSS {} KiB",
+                           second, rig.exposure_count(), rig.can_syncs(), loc.frames, loc.poses, heap_in_use_kib(),
+                           resident_kib()));
     }
   }
   report.exposures = rig.exposure_count();
@@ -160,6 +170,7 @@ SoakReport soak(const sim::Scenario& scenario, int64_t rig_seconds, int burst_fr
       any_gpio ? static_cast<uint64_t>((rig_seconds * kSecond) / scenario.frames.period_ns + 1) : 0;
   report.can_syncs = rig.can_syncs();
   report.rss_kib_end = resident_kib();
+  report.heap_kib_end = heap_in_use_kib();
   return report;
 }
 

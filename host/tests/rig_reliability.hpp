@@ -61,7 +61,10 @@ struct SoakReport {
   int64_t rig_seconds = 0;
   uint64_t exposures = 0, expected_exposures = 0;
   uint64_t can_syncs = 0;
-  long rss_kib_after_warmup = 0, rss_kib_end = 0;  // resident set after 60 s and at the end
+  // After 60 s and at the end: the heap in use (malloc's count of live bytes: what a leak
+  // grows) and the resident set (which also holds what the allocator keeps for reuse).
+  long heap_kib_after_warmup = 0, heap_kib_end = 0;
+  long rss_kib_after_warmup = 0, rss_kib_end = 0;
   std::vector<SoakBoard> boards;
   SoakLocalizer localizer;
   std::string failure;  // the rig's first error, empty when none
@@ -76,5 +79,7 @@ SoakReport soak(const sim::Scenario& scenario, int64_t rig_seconds, int burst_fr
 
 // Resident set size of this process (KiB), from /proc/self/statm.
 long resident_kib();
+// Heap bytes in use (KiB), from mallinfo2: allocated and not yet freed.
+long heap_in_use_kib();
 
 }  // namespace tetrapulse::host::testing

@@ -112,11 +112,11 @@ TEST(Soak, TenMinutesOfRigTime) {
   const sim::Scenario s = mixed_sync_scenario(4);
   const SoakReport r = soak(s, 600, 60, [](const std::string& line) { std::printf("[soak] %s\n", line.c_str()); });
   ASSERT_TRUE(r.failure.empty()) << r.failure;
-  std::printf("[measure] soak %lld s of rig time: %llu/%llu exposures, %llu CAN syncs, RSS %ld KiB after 60 s,"
-              " %ld KiB at the end\n",
+  std::printf("[measure] soak %lld s of rig time: %llu/%llu exposures, %llu CAN syncs, heap in use %ld KiB after 60 s,"
+              " %ld KiB at the end (RSS %ld, %ld KiB)\n",
               static_cast<long long>(r.rig_seconds), static_cast<unsigned long long>(r.exposures),
               static_cast<unsigned long long>(r.expected_exposures), static_cast<unsigned long long>(r.can_syncs),
-              r.rss_kib_after_warmup, r.rss_kib_end);
+              r.heap_kib_after_warmup, r.heap_kib_end, r.rss_kib_after_warmup, r.rss_kib_end);
   EXPECT_EQ(r.exposures, r.expected_exposures) << "every frame's exposure triggered";
   EXPECT_EQ(r.can_syncs, static_cast<uint64_t>((r.rig_seconds * kSecond + 8 * kSecond - 100 * kMs) / (100 * kMs) + 1))
       << "a Sync every 100 ms from power-up on";
@@ -151,9 +151,22 @@ TEST(Soak, TenMinutesOfRigTime) {
               per_burst.c_str());
   EXPECT_GT(loc.burst_poses[0], 45u) << "the first burst poses the targets";
   EXPECT_GE(fewest * 10, loc.burst_poses[0] * 9) << "no burst falls below 90 % of the first";
-  // Flat: what grows after the first minute is below 1 MiB (a leak of one allocation per
-  // exposure would be 54000 of them).
-  EXPECT_LT(r.rss_kib_end - r.rss_kib_after_warmup, 1024);
+  // With the localizer the heap grows in steps (+0.26 MiB in these 10 minutes, +4.2 MiB in
+  // 4 hours): its identifier's hypothesis list keeps the capacity of the largest frame so
+  // far, up to max_hypotheses (20000) entries (docs/reliability.md). Reported, not bounded
+  // here; the rig alone is bounded below.
+  std::printf("[measure] soak: heap in use grew %ld KiB from minute 1 to minute 10 with the localizer\n",
+              r.heap_kib_end - r.heap_kib_after_warmup);
+}
+
+TEST(Soak, TheRigsMemoryIsFlat) {
+  // The same 10 minutes without the camera: boards, sync masters, status reads.
+  const SoakReport r = soak(mixed_sync_scenario(4), 600, 0);
+  ASSERT_TRUE(r.failure.empty()) << r.failure;
+  std::printf("[measure] soak without the localizer: heap in use %ld KiB after 60 s, %ld KiB after 600 s\n",
+              r.heap_kib_after_warmup, r.heap_kib_end);
+  // A leak of one 16-byte allocation per exposure would be 280 KiB and more.
+  EXPECT_LT(r.heap_kib_end - r.heap_kib_after_warmup, 64);
 }
 
 }  // namespace

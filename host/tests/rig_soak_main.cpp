@@ -37,12 +37,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rig_soak: %s\n", r.failure.c_str());
     return 1;
   }
+  // The heap bound holds for the rig alone (--no-localizer); with the localizer its growth
+  // is printed (docs/reliability.md).
   bool ok = r.exposures == r.expected_exposures && r.localizer.frame_errors == 0 &&
-            r.rss_kib_end - r.rss_kib_after_warmup < 1024;
-  std::printf("%llu/%llu exposures, %llu CAN syncs, RSS %ld KiB after 60 s, %ld KiB at the end; localizer %llu frames,"
-              " %llu refused, %llu poses\n",
+            (burst_frames > 0 || r.heap_kib_end - r.heap_kib_after_warmup < 64);
+  std::printf("%llu/%llu exposures, %llu CAN syncs, heap in use %ld KiB after 60 s, %ld KiB at the end (RSS %ld,"
+              " %ld KiB); localizer %llu frames, %llu refused, %llu poses\n",
               static_cast<unsigned long long>(r.exposures), static_cast<unsigned long long>(r.expected_exposures),
-              static_cast<unsigned long long>(r.can_syncs), r.rss_kib_after_warmup, r.rss_kib_end,
+              static_cast<unsigned long long>(r.can_syncs), r.heap_kib_after_warmup, r.heap_kib_end,
+              r.rss_kib_after_warmup, r.rss_kib_end,
               static_cast<unsigned long long>(r.localizer.frames),
               static_cast<unsigned long long>(r.localizer.frame_errors),
               static_cast<unsigned long long>(r.localizer.poses));
