@@ -246,18 +246,19 @@ BlobExtractor::~BlobExtractor() = default;
 BlobExtractor::BlobExtractor(BlobExtractor&&) noexcept = default;
 BlobExtractor& BlobExtractor::operator=(BlobExtractor&&) noexcept = default;
 
-tl::expected<void, BlobInputError> BlobExtractor::extract(const cv::Mat& image, int expected, BlobExtraction* out) {
+tl::expected<void, BlobInputError> BlobExtractor::extract(const cv::Mat& image, int expected, BlobExtraction* out,
+                                                          bool prune) {
   out->clear();
   if (auto ok = check_image(image, config_); !ok) return ok;
   blob_internal::WindowPass& pass = scratch_->pass;
   pass.begin(image.size());
-  const Window w = pass.prepare(image, cv::Rect(0, 0, image.cols, image.rows), out);
+  const Window w = pass.prepare(image, cv::Rect(0, 0, image.cols, image.rows), out, /*flatten=*/true);
   pass.find(w, w.levels.f1);
   if (expected > 0) {
     const int found = pass.accepted();
     if (found < expected) pass.recover(w, expected - found);
     // A split can find more markers than were missing.
-    if (pass.accepted() > expected) pass.prune(expected);
+    if (prune && pass.accepted() > expected) pass.prune(expected);
   }
   for (const Region& r : pass.regions())
     if (r.accepted) out->blobs.push_back(r.blob);

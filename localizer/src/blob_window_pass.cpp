@@ -21,10 +21,14 @@ bool reason_is_shape(RejectReason r) {
 
 }  // namespace
 
-Window WindowPass::prepare(const cv::Mat& image, cv::Rect rect, BlobExtraction* out) {
+Window WindowPass::prepare(const cv::Mat& image, cv::Rect rect, BlobExtraction* out, bool flatten) {
   Window w;
   w.rect = rect;
   w.work = &working_.prepare(image, rect, config_.polarity, config_.colour);
+  const bool inverted = config_.polarity == MarkerPolarity::kDark && !config_.colour;
+  const double top = image.channels() == 3 ? 255.0 : type_max(image);
+  const double saturation = inverted || config_.saturation_level <= 0 ? top : config_.saturation_level;
+  if (flatten) w.work = &flattening_.apply(*w.work, saturation);
   histogram_.count(*w.work, rect);
   const BackgroundFit fit = histogram_.fit_background();
   Levels& lv = w.levels;
@@ -32,9 +36,7 @@ Window WindowPass::prepare(const cv::Mat& image, cv::Rect rect, BlobExtraction* 
   lv.sigma = std::max({fit.sigma, config_.min_background_sigma, 0.5 * histogram_.bin_width()});
   lv.f2 = lv.background + config_.f2_sigmas * lv.sigma;
   lv.f1 = std::max({histogram_.otsu(), lv.background + config_.f1_min_sigmas * lv.sigma, lv.f2});
-  const bool inverted = config_.polarity == MarkerPolarity::kDark && !config_.colour;
-  const double top = image.channels() == 3 ? 255.0 : type_max(image);
-  lv.saturation = inverted || config_.saturation_level <= 0 ? top : config_.saturation_level;
+  lv.saturation = saturation;
   lv.reported_background = to_input(lv.background, image, config_);
   WindowThresholds t;
   t.window = rect;

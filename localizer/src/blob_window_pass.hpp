@@ -6,6 +6,7 @@
 
 #include <opencv2/core/mat.hpp>
 
+#include "background_flattening.hpp"
 #include "background_histogram.hpp"
 #include "blob_recovery.hpp"
 #include "blob_regions.hpp"
@@ -33,7 +34,8 @@ class WindowPass {
   void finish() { grower_.clear(); }
 
   // Working image, histogram and thresholds of `rect`; appends them to out->windows.
-  Window prepare(const cv::Mat& image, cv::Rect rect, BlobExtraction* out);
+  // `flatten`: a background that is not flat is flattened first (background_flattening.hpp).
+  Window prepare(const cv::Mat& image, cv::Rect rect, BlobExtraction* out, bool flatten = false);
   // Grows, measures and tests the regions seeded above `seed_level`; returns
   // the index of the first new one.
   size_t find(const Window& w, double seed_level);
@@ -59,6 +61,7 @@ class WindowPass {
 
   BlobExtractorConfig config_;
   WorkingImage working_;
+  BackgroundFlattening flattening_;
   BackgroundHistogram histogram_;
   RegionGrower grower_;
   BlobRecovery recovery_;

@@ -30,7 +30,7 @@ void FrameBlobs::set_search_burst(int frames) {
 }
 
 tl::expected<void, BlobInputError> FrameBlobs::extract(const cv::Mat& image, const RoiPlan& plan, bool needs_search,
-                                                       int expected_whole) {
+                                                       int expected_whole, bool prune_whole) {
   const bool first = frames_++ == 0;
   hits_.clear();
   searched_ = false;
@@ -43,7 +43,7 @@ tl::expected<void, BlobInputError> FrameBlobs::extract(const cv::Mat& image, con
     extraction_.blobs.push_back(m.blob);
   }
   if (!search_now(first, needs_search)) return {};
-  if (auto r = extractor_.extract(image, expected_whole, &whole_); !r) return r;
+  if (auto r = extractor_.extract(image, expected_whole, &whole_, prune_whole); !r) return r;
   add_whole_image_blobs(plan);
   return {};
 }

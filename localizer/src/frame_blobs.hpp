@@ -46,10 +46,12 @@ class FrameBlobs {
   // Frames a whole-image search lasts (search_burst_frames); known from the second frame on.
   void set_search_burst(int frames);
 
-  // `needs_search`: some target or marker is not tracked; `expected_whole`: blobs the
-  // whole image should hold (0: unknown, as with coded markers).
+  // `needs_search`: some target or marker is not tracked; `expected_whole`: markers the
+  // whole image may hold, recovered when fewer are found; pruned to that number
+  // when more are found only with `prune_whole` (not for coded markers, whose
+  // codes tell clutter apart, and some of which may be dark).
   tl::expected<void, BlobInputError> extract(const cv::Mat& image, const RoiPlan& plan, bool needs_search,
-                                             int expected_whole);
+                                             int expected_whole, bool prune_whole);
 
   // The ROIs' measurements (one per plan ROI, in order) and the new blobs.
   const BlobExtraction& extraction() const { return extraction_; }

@@ -123,8 +123,8 @@ tl::expected<std::vector<TargetPose>, LocalizerError> Localizer::State::process(
   plan_rois(roster, tracker, camera, mid, frame_period_ns, options.min_roi_radius_px, &plan);
   // 2. Blobs, with the whole image searched while something is not tracked.
   const bool coded = targets.modulation.kind != ModulationKind::kConstant;
-  const int expected_whole = coded ? 0 : int(4 * targets.targets.size());
-  if (auto r = blobs.extract(image, plan, roster.needs_search(), expected_whole); !r)
+  const int expected_whole = int(4 * targets.targets.size());
+  if (auto r = blobs.extract(image, plan, roster.needs_search(), expected_whole, !coded); !r)
     return tl::unexpected(LocalizerError{r.error().message});
   // 3. Tracks, and the new ones that become markers of identified targets.
   tracker.update(stamp, blobs.extraction(), plan.gates);

@@ -102,8 +102,11 @@ class BlobExtractor {
 
   // Whole image, for (re)initialisation. `expected` = markers that should be
   // visible (n targets * m markers); 0 = unknown: no pruning, no recovery.
+  // `prune` false: more blobs than expected are all kept (coded markers tell
+  // clutter apart themselves); fewer still run the recovery cascade.
   // Fills out->blobs (top to bottom), out->rejected, out->windows.
-  tl::expected<void, BlobInputError> extract(const cv::Mat& image, int expected, BlobExtraction* out);
+  tl::expected<void, BlobInputError> extract(const cv::Mat& image, int expected, BlobExtraction* out,
+                                             bool prune = true);
 
   // Regions of interest, while tracking. Fills out->rois (one per ROI, in
   // order), out->blobs (found but taken by no ROI), out->rejected and
