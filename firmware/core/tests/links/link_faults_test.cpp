@@ -125,6 +125,7 @@ TEST(CanLinkFaults, EveryFaultCountedEveryGoodRequestAnsweredAndSyncKeepsItsLock
               " rx_malformed %u, bus-off shown %d times; LED edges within %.1f us, %d samples out of lock\n",
               faults[0], faults[1], faults[2], faults[3], faults[4], faults[5], answered, good, s.can_errors,
               s.rx_malformed, bus_off_seen, after.max_abs_ns / 1e3, unlocked);
+  for (int k = 0; k < 6; ++k) EXPECT_GT(faults[k], 0) << "no fault of kind '" << kFaultNames[k] << "' was injected";
   EXPECT_EQ(answered, good) << "a good request after a fault was not answered";
   EXPECT_EQ(bus_off_seen, 20) << "the status shows bus-off all the time it lasts";
   EXPECT_EQ(s.can_bus_off, 0) << "recovered";
