@@ -63,7 +63,8 @@ struct Localizer::State {
                 std::max(options.identification.max_samples, options.verify_samples), frequency_coded),
         checks(targets, frequency_code_of(targets, rig), check_options(options)),
         new_targets(camera, targets, identification_options(options), frequency_coded),
-        poses(pose_options(options)) {}
+        poses(pose_options(options)),
+        centroids(options.pose.sphere_centroid) {}
 
   tl::expected<std::vector<TargetPose>, LocalizerError> process(const cv::Mat& image, int64_t start, int64_t exposure);
   tl::expected<void, LocalizerError> check_frame(const cv::Mat& image, int64_t start, int64_t exposure) const;
@@ -83,6 +84,7 @@ struct Localizer::State {
   CodeChecks checks;
   NewTargets new_targets;
   TargetPoseOptions poses;
+  CentroidModel centroids;
   ExposureStamp stamp;
   int64_t frames = 0;
   int64_t previous_start = 0;
@@ -140,7 +142,7 @@ tl::expected<std::vector<TargetPose>, LocalizerError> Localizer::State::process(
   for (size_t t = 0; t < roster.size(); ++t) {
     if (!roster[t].identified) continue;
     const PoseFrame frame{camera, targets, tracker, stamp, frame_period_ns};
-    if (auto p = solve_target_pose(frame, t, checks.frequency_of(t), poses, &roster)) out.push_back(*p);
+    if (auto p = solve_target_pose(frame, t, checks.frequency_of(t), poses, &roster, &centroids)) out.push_back(*p);
   }
   previous_start = start;
   ++frames;
@@ -164,6 +166,8 @@ const TargetsFile& Localizer::targets() const { return state_->targets; }
 const BlobExtraction& Localizer::extraction() const { return state_->blobs.extraction(); }
 const BlobTracker& Localizer::tracker() const { return state_->tracker; }
 bool Localizer::searched_whole_image() const { return state_->blobs.searched(); }
+
+bool Localizer::measures_sphere_images() const { return state_->centroids.sphere(); }
 
 std::vector<TrackLabel> Localizer::track_labels() const {
   std::vector<TrackLabel> out;

@@ -108,27 +108,31 @@ std::optional<MarkerPose> solve(const PoseFrame& f, const Target& target, const 
 }
 
 // Whether a pose that rests on the prediction (three markers) agrees with it:
-// within max(floor, 4 x the prediction's running error), growing with the square
-// of the frames since the last pose (an acceleration's effect on the
-// extrapolation). A flipped root or a pose through a stray marker fails it.
+// within max(floor, 4 x the prediction's running error x g), g the square of the
+// frames since the last pose (an acceleration's effect on the extrapolation). The
+// floor itself does not grow: a target that coasted a few frames on a flat running
+// error must not let a flipped root through. A flipped root or a pose through a
+// stray marker fails it.
 bool agrees_with_prediction(const TrackedTarget& tt, const Pose& pose, double frames_since) {
   if (!tt.predicted) return false;
   const double growth = std::max(1.0, frames_since * frames_since);
   const double rot = rotation_angle_between(pose.R, tt.predicted->R);
   const double rel = (pose.t - tt.predicted->t).norm() / std::max(tt.predicted->t.norm(), 0.1);
-  return rot <= std::max(kMinRotationGate, 4 * tt.prediction_error_rad) * growth &&
-         rel <= std::max(kMinTranslationGate, 4 * tt.prediction_error_rel) * growth;
+  return rot <= std::max(kMinRotationGate, 4 * tt.prediction_error_rad * growth) &&
+         rel <= std::max(kMinTranslationGate, 4 * tt.prediction_error_rel * growth);
 }
 
 }  // namespace
 
 std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const std::array<int, 4>& frequency_of,
-                                            const TargetPoseOptions& options, TargetRoster* roster) {
+                                            const TargetPoseOptions& options, TargetRoster* roster,
+                                            CentroidModel* centroids) {
   TrackedTarget& tt = (*roster)[t];
   const Target& target = f.targets.targets[t];
   const int64_t mid = f.stamp.middle_ns();
   FrameMarkers markers = markers_of(f, t, frequency_of, tt);
   MarkerPoseOptions pose_options = options.pose;
+  pose_options.sphere_centroid = options.pose.sphere_centroid && centroids->sphere();
   pose_options.max_rms_px = std::clamp(4 * tt.typical_rms_px, kMinRmsGatePx, options.pose.max_rms_px);
   if (f.frame_period_ns > 0) {
     const double frames = double(mid - tt.last_pose_ns) / double(f.frame_period_ns);
@@ -144,8 +148,10 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
     if (mid - tt.last_pose_ns > options.forget_after_ns) tt.forget();
     return std::nullopt;
   }
-  if (solved->used.size() == 4 && markers.unconfirmed.empty() && markers.evidence.merged.empty())
+  if (solved->used.size() == 4 && markers.unconfirmed.empty() && markers.evidence.merged.empty()) {
     tt.typical_rms_px = std::max(0.05, 0.8 * tt.typical_rms_px + 0.2 * solved->rms_px);
+    centroids->weigh(f.camera, target, markers.confirmed, solved->pose, options.pose.centroid_sigma_px);
+  }
   for (int m : solved->used) {
     tt.outlier_frames[size_t(m)] = 0;
     const BlobTrack* track = f.tracker.find(tt.track_of[size_t(m)]);

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "centroid_model.hpp"
 #include "target_roster.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
 
@@ -39,7 +40,9 @@ struct PoseFrame {
 };
 
 // frequency_of: per marker of target t, its frequency code (>= 0) or -1.
+// centroids: the centroid model the poses use, weighed by each clean four-marker pose.
 std::optional<TargetPose> solve_target_pose(const PoseFrame& frame, size_t t, const std::array<int, 4>& frequency_of,
-                                            const TargetPoseOptions& options, TargetRoster* roster);
+                                            const TargetPoseOptions& options, TargetRoster* roster,
+                                            CentroidModel* centroids);
 
 }  // namespace tetrapulse::localizer_internal

@@ -112,6 +112,10 @@ class Localizer {
   const BlobTracker& tracker() const;
   std::vector<TrackLabel> track_labels() const;
   bool searched_whole_image() const;  // in the last frame
+  // Whether poses model the markers' centroids as sphere images (sphere_image.hpp)
+  // or as their centres' projections: decided by a sequential test over the first
+  // 100-1000 clean four-marker poses (the model the rig's images fit; centroid_model.hpp).
+  bool measures_sphere_images() const;
   // Free-running boards: the estimated clock of a tracked target (nullopt when not tracked).
   std::optional<CodeClock> clock_of(int target_id) const;
 

@@ -1,0 +1,39 @@
+#include "centroid_model.hpp"
+
+#include <algorithm>
+
+#include "tetrapulse/localizer/pose_refinement.hpp"
+
+namespace tetrapulse::localizer_internal {
+
+CentroidModel::CentroidModel(bool sphere) : sphere_(sphere), decided_(!sphere) {}
+
+void CentroidModel::weigh(const CameraModel& camera, const Target& target, const std::vector<SeenMarker>& seen,
+                          const Pose& pose, double sigma_px) {
+  if (decided_ || target.marker_diameter_m <= 0 || seen.size() < 4) return;
+  std::vector<MarkerObservation> observations;
+  for (const SeenMarker& s : seen) observations.push_back({target.markers[size_t(s.marker)].position_m, s.pixel});
+  double ssr[2];
+  for (int k = 0; k < 2; ++k) {
+    RefinementOptions o;
+    o.marker_diameter_m = target.marker_diameter_m;
+    o.sphere_centroid = k == 0;
+    o.sigma_px = sigma_px;
+    const auto refined = refine_pose(camera, observations, pose, o);
+    if (!refined) return;  // a marker out of view under one model: not a pose to weigh
+    ssr[k] = refined->rms_px * refined->rms_px * double(observations.size());
+  }
+  ssr_[0] += ssr[0];
+  ssr_[1] += ssr[1];
+  if (++poses_ < kMinPoses) return;
+  const double sigma2 = std::max(std::min(ssr_[0], ssr_[1]) / (2.0 * poses_), 1e-12);
+  const double evidence = (ssr_[0] - ssr_[1]) / sigma2;
+  if (evidence > kEvidence) {
+    decided_ = true;
+    sphere_ = false;
+  } else if (evidence < -kEvidence || poses_ >= kMaxPoses) {
+    decided_ = true;
+  }
+}
+
+}  // namespace tetrapulse::localizer_internal
