@@ -20,6 +20,7 @@
 #include "vision_commands.hpp"
 #include "pose_overlay.hpp"
 #include "progress_bar.hpp"
+#include "stop_signal.hpp"
 #include "tetrapulse/localizer/frame_source.hpp"
 #include "tetrapulse/localizer/pose_evaluation.hpp"
 #include "tetrapulse/localizer/pose_writer.hpp"
@@ -49,6 +50,8 @@ constexpr int kStripFrames = 6;
 // The localizer's rows, and the poses of each frame for the overlays.
 struct Localized {
   std::vector<PoseRecord> rows;
+  size_t skipped = 0;    // frames that could not be localized (each named on stderr)
+  bool stopped = false;  // by SIGINT or SIGTERM: poses.csv holds the frames so far
 };
 
 DatasetResult<Localized> localize_dataset(const RigDataset& dataset, const std::string& poses_csv, bool quiet) {
@@ -58,17 +61,30 @@ DatasetResult<Localized> localize_dataset(const RigDataset& dataset, const std::
   auto source = dataset_frames(dataset);
   ProgressBar progress(source->count(), !quiet);
   Localized out;
-  auto frames = localize_frames(*source, localizer, [&](const Frame& f, const std::vector<TargetPose>& poses) {
-    for (const TargetPose& p : poses) {
-      if (auto r = writer->write(f.frame, p); !r) return r;
-      out.rows.push_back(PoseRecord{f.frame, p.mid_exposure_ns, p.target_id, PoseFields::from(p.pose), p.markers, p.rms_px});
-    }
+  LocalizeHooks hooks;
+  hooks.stop = &stop_on_signals();
+  hooks.on_skip = [&](const Frame&, const DatasetError& why) {
+    progress.finish();  // clears the bar's line for the message
+    fmt::print(stderr, "tetrapulse demo: skipped {}\n", why.what());
     progress.advance();
-    return DatasetResult<void>{};
-  });
+  };
+  auto frames = localize_frames(
+      *source, localizer,
+      [&](const Frame& f, const std::vector<TargetPose>& poses) {
+        for (const TargetPose& p : poses) {
+          if (auto r = writer->write(f.frame, p); !r) return r;
+          out.rows.push_back(
+              PoseRecord{f.frame, p.mid_exposure_ns, p.target_id, PoseFields::from(p.pose), p.markers, p.rms_px});
+        }
+        progress.advance();
+        return writer->flush();  // whole frames reach the file as they come
+      },
+      hooks);
   progress.finish();
   if (!frames) return tl::unexpected(frames.error());
   if (auto r = writer->close(); !r) return tl::unexpected(r.error());
+  out.skipped = frames->skipped + dataset.skipped_lines().size();
+  out.stopped = frames->stopped;
   return out;
 }
 
@@ -145,6 +161,8 @@ struct ScenarioOutcome {
   Evaluation evaluation;
   std::string folder;
   size_t frames = 0;
+  size_t skipped = 0;
+  bool stopped = false;  // by a signal, while localizing: nothing evaluated or drawn
 };
 
 // One scenario: simulate, localize, evaluate, draw. Errors name the file at fault.
@@ -165,6 +183,12 @@ DatasetResult<ScenarioOutcome> run_scenario(const std::string& name, const DemoA
   if (!a.quiet) fmt::print(stderr, "tetrapulse demo: {}: localizing\n", name);
   auto localized = localize_dataset(*dataset, (fs::path(folder) / "poses.csv").string(), a.quiet);
   if (!localized) return tl::unexpected(localized.error());
+  if (localized->stopped) {
+    ScenarioOutcome stopped;
+    stopped.folder = folder;
+    stopped.stopped = true;
+    return stopped;
+  }
   auto evaluation = evaluate_poses(*dataset, localized->rows, (fs::path(folder) / "poses.csv").string());
   if (!evaluation) return tl::unexpected(evaluation.error());
   const bool camera_moves = !std::holds_alternative<sim::StaticMotion>(scenario->camera_motion);
@@ -176,15 +200,21 @@ DatasetResult<ScenarioOutcome> run_scenario(const std::string& name, const DemoA
   auto strip = overlay_strip(*dataset, *localized);
   if (!strip) return tl::unexpected(strip.error());
   if (auto r = write_png((fs::path(folder) / "overlay.png").string(), *strip); !r) return tl::unexpected(r.error());
-  return ScenarioOutcome{*evaluation, folder, dataset->frames().size()};
+  return ScenarioOutcome{*evaluation, folder, dataset->frames().size(), localized->skipped, false};
 }
 
 int run_demo(const DemoArgs& a, const DemoSimulation& simulate) {
   const auto start = std::chrono::steady_clock::now();
   std::string markdown = evaluation_markdown_header();
+  size_t skipped = 0;
   for (const char* name : kDemoScenarios) {
     auto outcome = run_scenario(name, a, simulate);
     if (!outcome) return fail(kExitFailure, outcome.error().what());
+    if (outcome->stopped) {
+      return fail(kExitFailure, fmt::format("stopped by a signal; {}/poses.csv has the frames localized so far",
+                                            outcome->folder));
+    }
+    skipped += outcome->skipped;
     const Evaluation& e = outcome->evaluation;
     fmt::print("{}\n", evaluation_table(e, fmt::format("{} ({} frames)", name, outcome->frames)));
     fmt::print("  wrote {0}/poses.csv, {0}/trajectory.png, {0}/overlay.png\n\n", outcome->folder);
@@ -194,7 +224,8 @@ int run_demo(const DemoArgs& a, const DemoSimulation& simulate) {
   if (auto r = write_text_file(table, markdown); !r) return fail(kExitFailure, r.error().what());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fmt::print("tetrapulse demo: accuracy table in {}; done in {:.1f} s\n", table, seconds);
-  return kExitOk;
+  if (skipped > 0) fmt::print(stderr, "tetrapulse demo: {} frames skipped (named above)\n", skipped);
+  return skipped > 0 ? kExitSkipped : kExitOk;
 }
 
 }  // namespace

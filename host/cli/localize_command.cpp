@@ -13,6 +13,7 @@
 #include "vision_commands.hpp"
 #include "progress_bar.hpp"
 #include "ros2_output.hpp"
+#include "stop_signal.hpp"
 #include "tetrapulse/localizer/frame_source.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
 #include "tetrapulse/localizer/pose_writer.hpp"
@@ -69,6 +70,9 @@ int run_localize(const LocalizeArgs& a) {
     auto d = RigDataset::open(a.dataset);
     if (!d) return fail(kExitBadInput, d.error().what());
     dataset = std::move(*d);
+    for (const DatasetError& line : dataset->skipped_lines()) {
+      std::fprintf(stderr, "tetrapulse localize: skipped %s\n", line.what().c_str());
+    }
     camera = dataset->camera();
     targets = dataset->targets();
   }
@@ -136,25 +140,42 @@ int run_localize(const LocalizeArgs& a) {
         std::fflush(stdout);
       }
     }
+    // Each frame reaches the file whole before the next is read: a stop or a crash
+    // keeps every frame so far.
+    if (writer) {
+      if (auto r = writer->flush(); !r) return r;
+    }
     progress.advance();
     frame_began = std::chrono::steady_clock::now();
     return {};
   };
-  auto frames = localize_frames(*source, localizer, on_frame);
+  LocalizeHooks hooks;
+  hooks.stop = &stop_on_signals();  // SIGINT, SIGTERM: stop after the frame in hand, close the file
+  hooks.on_skip = [&](const Frame&, const DatasetError& why) {
+    progress.finish();  // clears the bar's line for the message; advance() draws it again
+    std::fprintf(stderr, "tetrapulse localize: skipped %s\n", why.what().c_str());
+    progress.advance();
+  };
+  auto frames = localize_frames(*source, localizer, on_frame, hooks);
   progress.finish();
   if (!frames) return fail(kExitBadInput, frames.error().what());
+  const size_t skipped = frames->skipped + (dataset ? dataset->skipped_lines().size() : 0);
   size_t rows = 0;
   if (writer) {
     rows = writer->rows();
     if (auto r = writer->close(); !r) return fail(kExitFailure, r.error().what());
   }
   if (!a.quiet && a.out != "-") {
-    std::fprintf(stderr, "tetrapulse localize: %zu frames, %zu poses%s%s\n", *frames, rows,
+    std::fprintf(stderr, "tetrapulse localize: %s%zu frames, %zu skipped, %zu poses%s%s\n",
+                 frames->stopped ? "stopped by a signal after " : "", frames->frames, skipped, rows,
                  a.out.empty() ? "" : " written to ", a.out.c_str());
   }
   const bool published = !ros2 || ros2->finish(localizer, a.quiet);
-  if (*frames > 0 && rows == 0 && writer) return fail(kExitFailure, "no target was identified in any frame");
-  return published ? kExitOk : kExitPublishFailed;
+  if (frames->frames + skipped > 0 && rows == 0 && writer) {
+    return fail(kExitFailure, "no target was identified in any frame");
+  }
+  if (!published) return kExitPublishFailed;
+  return skipped > 0 ? kExitSkipped : kExitOk;
 }
 
 }  // namespace

@@ -17,8 +17,11 @@ namespace tetrapulse::csv {
 
 class Table {
  public:
-  // Splits `text` into rows; checks the header equals `header` exactly.
-  static DatasetResult<Table> parse(const std::string& text, const std::string& file, const std::string& header) {
+  // Splits `text` into rows; checks the header equals `header` exactly. A row with
+  // the wrong number of fields is an error, or, given `bad_rows`, left out and
+  // recorded there (file:line) so the caller can skip it.
+  static DatasetResult<Table> parse(const std::string& text, const std::string& file, const std::string& header,
+                                    std::vector<DatasetError>* bad_rows = nullptr) {
     Table t;
     t.file_ = file;
     size_t pos = 0;
@@ -42,7 +45,10 @@ class Table {
       }
       std::vector<std::string_view> fields = split(row);
       if (fields.size() != t.columns_) {
-        return dataset_error(file, line, fmt::format("expected {} fields, got {}", t.columns_, fields.size()));
+        DatasetError error{file, line, fmt::format("expected {} fields, got {}", t.columns_, fields.size())};
+        if (!bad_rows) return tl::unexpected(error);
+        bad_rows->push_back(std::move(error));
+        continue;
       }
       t.rows_.push_back(Row{line, std::vector<std::string>(fields.begin(), fields.end())});
     }

@@ -1,4 +1,5 @@
 // frames.csv, groundtruth.csv and poses.csv (spec/rig-dataset.md).
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -36,10 +37,11 @@ std::string format_pose(const PoseFields& p) {
 
 template <typename T>
 DatasetResult<T> read_table(const std::string& path, const char* header,
-                            const std::function<std::optional<DatasetError>(const csv::Table&, T*)>& body) {
+                            const std::function<std::optional<DatasetError>(const csv::Table&, T*)>& body,
+                            std::vector<DatasetError>* bad_rows = nullptr) {
   auto text = read_text_file(path);
   if (!text) return tl::unexpected(text.error());
-  auto table = csv::Table::parse(*text, path, header);
+  auto table = csv::Table::parse(*text, path, header, bad_rows);
   if (!table) return tl::unexpected(table.error());
   T out;
   if (auto err = body(*table, &out)) return tl::unexpected(*err);
@@ -74,9 +76,10 @@ bool read_timing(csv::FieldReader& r, const std::vector<FrameRecord>& prev, Fram
 
 }  // namespace
 
-DatasetResult<std::vector<FrameRecord>> read_frames_csv(const std::string& path) {
+DatasetResult<std::vector<FrameRecord>> read_frames_csv(const std::string& path,
+                                                        std::vector<DatasetError>* skipped_lines) {
   using Rows = std::vector<FrameRecord>;
-  return read_table<Rows>(path, kFramesHeader, [](const csv::Table& t, Rows* out) -> std::optional<DatasetError> {
+  const auto rows = [skipped_lines](const csv::Table& t, Rows* out) -> std::optional<DatasetError> {
     for (const auto& row : t.rows()) {
       csv::FieldReader r(t, row);
       FrameRecord f;
@@ -84,11 +87,22 @@ DatasetResult<std::vector<FrameRecord>> read_frames_csv(const std::string& path)
         f.file = r.text(3);
         if (f.file.empty()) r.fail("file: empty");
       }
-      if (r.failed()) return r.error();
+      if (r.failed()) {
+        if (!skipped_lines) return r.error();
+        skipped_lines->push_back(r.error());
+        continue;
+      }
       out->push_back(std::move(f));
     }
     return std::nullopt;
-  });
+  };
+  auto out = read_table<Rows>(path, kFramesHeader, rows, skipped_lines);
+  // Line order: the rows' own errors come after those of the split.
+  if (skipped_lines) {
+    std::stable_sort(skipped_lines->begin(), skipped_lines->end(),
+                     [](const DatasetError& a, const DatasetError& b) { return a.line < b.line; });
+  }
+  return out;
 }
 
 DatasetResult<std::vector<FrameRecord>> read_timestamps_csv(const std::string& path) {

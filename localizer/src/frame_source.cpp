@@ -18,9 +18,14 @@ class DatasetFrames : public FrameSource {
     if (next_ >= dataset_.frames().size()) return std::optional<Frame>();
     const FrameRecord& row = dataset_.frames()[next_];
     auto image = dataset_.load_image(next_);
-    if (!image) return tl::unexpected(image.error());
     ++next_;
-    return Frame{row.frame, row.timestamp_ns, row.exposure_ns, std::move(*image), dataset_.path_of(row.file)};
+    Frame f{row.frame, row.timestamp_ns, row.exposure_ns, {}, dataset_.path_of(row.file), std::nullopt};
+    if (image) {
+      f.image = std::move(*image);
+    } else {
+      f.unreadable = image.error();
+    }
+    return f;
   }
   std::optional<size_t> count() const override { return dataset_.frames().size(); }
 
@@ -55,10 +60,12 @@ class VideoFrames : public FrameSource {
   DatasetResult<std::optional<Frame>> next() override {
     cv::Mat image;
     bool got = false;
+    std::string undecodable;
     try {
       got = capture_.read(image) && !image.empty();
     } catch (const cv::Exception& e) {
-      return dataset_error(video_, 0, fmt::format("frame {}: cannot decode: {}", next_, e.what()));
+      got = true;  // a frame was there; it is skipped
+      undecodable = std::string("cannot decode: ") + e.what();
     }
     if (next_ >= rows_.size()) {
       if (got) {
@@ -71,12 +78,16 @@ class VideoFrames : public FrameSource {
       return dataset_error(timestamps_, 0,
                            fmt::format("has {} rows, but {} ends after {} frames", rows_.size(), video_, next_));
     }
-    if (const std::string why = to_grey(&image, camera_); !why.empty()) {
-      return dataset_error(video_, 0, fmt::format("frame {}: {}", rows_[next_].frame, why));
-    }
     const FrameRecord& row = rows_[next_++];
-    return Frame{row.frame, row.timestamp_ns, row.exposure_ns, std::move(image),
-                 fmt::format("{} frame {}", video_, row.frame)};
+    Frame f{row.frame, row.timestamp_ns, row.exposure_ns, {}, fmt::format("{} frame {}", video_, row.frame),
+            std::nullopt};
+    const std::string why = undecodable.empty() ? to_grey(&image, camera_) : undecodable;
+    if (why.empty()) {
+      f.image = std::move(image);
+    } else {
+      f.unreadable = DatasetError{video_, 0, fmt::format("frame {}: {}", row.frame, why)};
+    }
+    return f;
   }
   std::optional<size_t> count() const override { return rows_.size(); }
 
@@ -114,11 +125,14 @@ class CameraFrames : public FrameSource {
     int64_t start = end_ns - exposure_ns_;
     if (frame_ > 0 && start <= last_start_) start = last_start_ + 1;  // a driver that repeats a stamp
     last_start_ = start;
-    if (const std::string why = to_grey(&image, camera_); !why.empty()) {
-      return dataset_error(device_, 0, fmt::format("frame {}: {}", frame_, why));
-    }
-    Frame f{frame_, start, exposure_ns_, std::move(image), fmt::format("{} frame {}", device_, frame_)};
+    Frame f{frame_, start, exposure_ns_, {}, fmt::format("{} frame {}", device_, frame_), std::nullopt};
     ++frame_;
+    // A buffer that is not a frame of this camera (size, format) costs only itself.
+    if (const std::string why = to_grey(&image, camera_); !why.empty()) {
+      f.unreadable = DatasetError{device_, 0, fmt::format("frame {}: {}", f.frame, why)};
+    } else {
+      f.image = std::move(image);
+    }
     return f;
   }
   std::optional<size_t> count() const override { return std::nullopt; }
@@ -134,17 +148,33 @@ class CameraFrames : public FrameSource {
 
 }  // namespace
 
-DatasetResult<size_t> localize_frames(FrameSource& source, Localizer& localizer, const FrameCallback& on_frame) {
-  size_t frames = 0;
+DatasetResult<LocalizedFrames> localize_frames(FrameSource& source, Localizer& localizer, const FrameCallback& on_frame,
+                                               const LocalizeHooks& hooks) {
+  LocalizedFrames out;
+  const auto skip = [&](const Frame& f, const DatasetError& why) {
+    ++out.skipped;
+    if (hooks.on_skip) hooks.on_skip(f, why);
+  };
   for (;;) {
+    if (hooks.stop && hooks.stop->load()) {
+      out.stopped = true;
+      return out;
+    }
     auto frame = source.next();
     if (!frame) return tl::unexpected(frame.error());
-    if (!*frame) return frames;
+    if (!*frame) return out;
     const Frame& f = **frame;
+    if (f.unreadable) {
+      skip(f, *f.unreadable);
+      continue;
+    }
     auto poses = localizer.process(f.image, f.timestamp_ns, f.exposure_ns);
-    if (!poses) return dataset_error(f.name, 0, poses.error().message);
+    if (!poses) {
+      skip(f, DatasetError{f.name, 0, poses.error().message});
+      continue;
+    }
     if (auto r = on_frame(f, *poses); !r) return tl::unexpected(r.error());
-    ++frames;
+    ++out.frames;
   }
 }
 

@@ -62,7 +62,8 @@ DatasetResult<PoseWriter> PoseWriter::open(const std::string& path, PoseFormat f
   if (!w.split_by_target_) {
     auto f = w.file_for(-1);
     if (!f) return tl::unexpected(f.error());
-    if (format == PoseFormat::kCsv) std::fputs(format_poses_csv_header().c_str(), (*f)->stream);
+    if (format == PoseFormat::kCsv) (*f)->pending = format_poses_csv_header();
+    if (auto r = w.flush(); !r) return tl::unexpected(r.error());
   }
   return w;
 }
@@ -71,12 +72,9 @@ PoseWriter::PoseWriter(PoseWriter&&) noexcept = default;
 PoseWriter& PoseWriter::operator=(PoseWriter&&) noexcept = default;
 
 PoseWriter::~PoseWriter() {
-  // Not closed: drop the temporary files.
+  // Not closed (an error): keep what was flushed, whole frames only.
   for (auto& [key, file] : files_) {
-    if (!file.stream || file.path == "-") continue;
-    std::fclose(file.stream);
-    std::error_code ec;
-    std::filesystem::remove(file.path + ".tmp", ec);
+    if (file.stream && file.path != "-") std::fclose(file.stream);
   }
 }
 
@@ -96,7 +94,7 @@ DatasetResult<PoseWriter::File*> PoseWriter::file_for(int target_id) {
     } else {
       file.path = path_;
     }
-    file.stream = std::fopen((file.path + ".tmp").c_str(), "w");
+    file.stream = std::fopen(file.path.c_str(), "w");
     if (!file.stream) return dataset_error(file.path, 0, std::string("cannot write: ") + std::strerror(errno));
   }
   return &files_.emplace(key, file).first->second;
@@ -105,26 +103,31 @@ DatasetResult<PoseWriter::File*> PoseWriter::file_for(int target_id) {
 DatasetResult<void> PoseWriter::write(int64_t frame, const TargetPose& pose) {
   auto file = file_for(pose.target_id);
   if (!file) return tl::unexpected(file.error());
-  const std::string line = format_pose_line(format_, frame, pose);
-  if (std::fputs(line.c_str(), (*file)->stream) < 0) {
-    return dataset_error((*file)->path, 0, std::string("cannot write: ") + std::strerror(errno));
-  }
-  if ((*file)->path == "-") std::fflush(stdout);
+  (*file)->pending += format_pose_line(format_, frame, pose);
   ++rows_;
   return {};
 }
 
+DatasetResult<void> PoseWriter::flush() {
+  for (auto& [key, file] : files_) {
+    if (!file.stream || file.pending.empty()) continue;
+    const bool ok = std::fwrite(file.pending.data(), 1, file.pending.size(), file.stream) == file.pending.size() &&
+                    std::fflush(file.stream) == 0;
+    file.pending.clear();
+    if (!ok) return dataset_error(file.path, 0, std::string("cannot write: ") + std::strerror(errno));
+  }
+  return {};
+}
+
 DatasetResult<void> PoseWriter::close() {
+  auto flushed = flush();
   for (auto& [key, file] : files_) {
     if (!file.stream || file.path == "-") continue;
     const bool ok = std::fclose(file.stream) == 0;
     file.stream = nullptr;
-    if (!ok) return dataset_error(file.path, 0, std::string("cannot write: ") + std::strerror(errno));
-    std::error_code ec;
-    std::filesystem::rename(file.path + ".tmp", file.path, ec);
-    if (ec) return dataset_error(file.path, 0, "cannot write: " + ec.message());
+    if (flushed && !ok) flushed = dataset_error(file.path, 0, std::string("cannot write: ") + std::strerror(errno));
   }
-  return {};
+  return flushed;
 }
 
 }  // namespace tetrapulse

@@ -25,7 +25,7 @@ DatasetResult<RigDataset> RigDataset::open(const std::string& folder) {
   auto targets = read_targets_yaml(d.path_of("targets.yaml"));
   if (!targets) return tl::unexpected(targets.error());
   d.targets_ = std::move(*targets);
-  auto frames = read_frames_csv(d.path_of("frames.csv"));
+  auto frames = read_frames_csv(d.path_of("frames.csv"), &d.skipped_lines_);
   if (!frames) return tl::unexpected(frames.error());
   d.frames_ = std::move(*frames);
   const std::string gt = d.path_of("groundtruth.csv");
@@ -47,13 +47,16 @@ DatasetResult<cv::Mat> RigDataset::load_image(size_t index, ImageMode mode) cons
   if (!fs::is_regular_file(path, ec)) {
     return dataset_error(path, 0, fmt::format("image of frame {} is missing", frames_[index].frame));
   }
+  if (fs::file_size(path, ec) == 0 && !ec) {
+    return dataset_error(path, 0, fmt::format("image of frame {} is empty (0 bytes)", frames_[index].frame));
+  }
   cv::Mat img;
   try {
     img = cv::imread(path, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception& e) {
     return dataset_error(path, 0, std::string("cannot decode image: ") + e.what());
   }
-  if (img.empty()) return dataset_error(path, 0, "cannot decode image (not a readable PNG)");
+  if (img.empty()) return dataset_error(path, 0, "cannot decode image (truncated, or not a readable PNG)");
   const int depth = img.depth();
   if (img.channels() == 1) {
     if (depth != CV_8U && depth != CV_16U) return dataset_error(path, 0, "grey image must be 8- or 16-bit");

@@ -183,6 +183,34 @@ TEST(FramesCsv, RejectsDuplicateAndUnsortedTimestampsNamingTheLine) {
   EXPECT_EQ(skipped->back().frame, 5);
 }
 
+// Given a list for them, malformed rows cost only themselves: each is listed with its
+// line, in line order, and every good row (checked against the good ones before) is kept.
+TEST(FramesCsv, SkipsMalformedRowsNamingEachLine) {
+  TempDir dir;
+  std::vector<DatasetError> skipped;
+  auto rows = read_frames_csv(dir.file("f.csv",
+                                       "frame,timestamp_ns,exposure_ns,file\n"
+                                       "0,100,10,a.png\n"
+                                       "1,soon,10,b.png\n"  // line 3: not a number
+                                       "2,300,10\n"         // line 4: a field short
+                                       "3,300,10,d.png\n"
+                                       "4,300,10,e.png\n"   // line 6: duplicates frame 3
+                                       "5,500,10,f.png\n"),
+                              &skipped);
+  ASSERT_TRUE(rows) << rows.error().what();
+  ASSERT_EQ(rows->size(), 3u);
+  EXPECT_EQ((*rows)[1].frame, 3);
+  EXPECT_EQ((*rows)[2].frame, 5);
+  ASSERT_EQ(skipped.size(), 3u);
+  EXPECT_EQ(skipped[0].line, 3);
+  EXPECT_NE(skipped[0].message.find("timestamp_ns"), std::string::npos);
+  EXPECT_EQ(skipped[1].line, 4);
+  EXPECT_EQ(skipped[2].line, 6);
+  EXPECT_NE(skipped[2].what().find("f.csv:6"), std::string::npos);
+  // A wrong header is still the whole file's error.
+  EXPECT_FALSE(read_frames_csv(dir.file("g.csv", "frame,time,exposure_ns,file\n0,1,1,a.png\n"), &skipped));
+}
+
 TEST(RigDataset, WriterOutputReadsBackWithEveryFieldPreserved) {
   TempDir dir;
   auto camera = parse_camera_yaml(kCamera, "camera.yaml");

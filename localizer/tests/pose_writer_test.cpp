@@ -65,7 +65,12 @@ TEST_F(PoseWriterTest, CsvReadsBackExactly) {
   ASSERT_TRUE(w) << w.error().what();
   ASSERT_TRUE(w->write(0, at(5'000'000, pose(3, 0.1))));
   ASSERT_TRUE(w->write(1, at(15'000'000, pose(8, 0.2))));
-  EXPECT_FALSE(fs::exists(path));  // written to PATH.tmp until closed
+  // Nothing but the header reaches the file until the frame is flushed; then whole rows.
+  EXPECT_EQ(read_poses_csv(path).value_or(std::vector<PoseRecord>(9)).size(), 0u);
+  ASSERT_TRUE(w->flush());
+  auto flushed = read_poses_csv(path);
+  ASSERT_TRUE(flushed) << flushed.error().what();
+  EXPECT_EQ(flushed->size(), 2u);
   ASSERT_TRUE(w->close());
   auto rows = read_poses_csv(path);
   ASSERT_TRUE(rows) << rows.error().what();

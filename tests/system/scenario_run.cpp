@@ -146,6 +146,7 @@ tl::expected<ScenarioRun, std::string> run_scenario(const sim::Scenario& scenari
     return DatasetResult<void>{};
   });
   if (!localized) return tl::unexpected(localized.error().what());
+  if (localized->skipped > 0) return tl::unexpected(std::to_string(localized->skipped) + " frames could not be localized");
   // The simulation knows the free-running boards' clocks, b(t) = offset + t (1 + ppm 1e-6)
   // (board_clock.hpp): coverage then counts the frames whose markers are truly lit.
   EvaluationOptions evaluation_options;

@@ -56,8 +56,11 @@ DatasetResult<TargetsFile> read_targets_yaml(const std::string& path);
 DatasetResult<TargetsFile> parse_targets_yaml(const std::string& text, const std::string& name);
 std::string format_targets_yaml(const TargetsFile& targets);
 
-// Rows must have strictly increasing frame numbers and timestamps.
-DatasetResult<std::vector<FrameRecord>> read_frames_csv(const std::string& path);
+// Rows must have strictly increasing frame numbers and timestamps. A malformed
+// row is an error, or, given `skipped_lines`, left out and recorded there (its
+// file:line and what is wrong); a missing file or a wrong header always fails.
+DatasetResult<std::vector<FrameRecord>> read_frames_csv(const std::string& path,
+                                                        std::vector<DatasetError>* skipped_lines = nullptr);
 std::string format_frames_csv(const std::vector<FrameRecord>& frames);
 
 // A recording's timestamps (a video beside it): frames.csv without the file

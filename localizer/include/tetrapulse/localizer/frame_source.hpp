@@ -3,8 +3,10 @@
 // video with a timestamps file, or a live V4L2 camera (both through OpenCV's
 // VideoCapture). Every frame carries its exposure in rig time (integer ns,
 // [timestamp_ns, timestamp_ns + exposure_ns), spec/rig-dataset.md). Images
-// come as 8- or 16-bit grey (colour is converted); a frame that is not
-// camera-sized is an error that names its file.
+// come as 8- or 16-bit grey (colour is converted). A frame whose image cannot
+// be had (missing, empty, truncated or undecodable file, not camera-sized, a bad
+// camera buffer) costs only itself: it comes with `unreadable` set and is skipped.
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -26,12 +28,16 @@ struct Frame {
   int64_t exposure_ns = 0;
   cv::Mat image;
   std::string name;  // for messages: the image file, or "VIDEO frame N"
+  // Set when the image could not be had: `image` is empty, the frame is to be
+  // skipped, and the error names the file (or buffer) and what is wrong.
+  std::optional<DatasetError> unreadable;
 };
 
 class FrameSource {
  public:
   virtual ~FrameSource() = default;
-  // The next frame; nullopt at the end; an error names the file (and line) at fault.
+  // The next frame (possibly unreadable, see Frame); nullopt at the end; an error
+  // means the source itself failed and names the file (and line) at fault.
   virtual DatasetResult<std::optional<Frame>> next() = 0;
   // How many frames there are, when known (for progress).
   virtual std::optional<size_t> count() const = 0;
@@ -55,10 +61,28 @@ DatasetResult<std::unique_ptr<FrameSource>> video_frames(const std::string& vide
 DatasetResult<std::unique_ptr<FrameSource>> camera_frames(const std::string& device, const CameraInfo& camera,
                                                           int64_t exposure_ns);
 
-// Runs `localizer` over every frame of `source`, calling on_frame with each
-// frame's poses (at mid-exposure) until the source ends or on_frame fails. A
-// frame the localizer refuses is an error naming the frame.
+// What localize_frames did: frames localized, frames skipped (unreadable, or
+// refused by the localizer), and whether `stop` ended it before the source did.
+struct LocalizedFrames {
+  size_t frames = 0;
+  size_t skipped = 0;
+  bool stopped = false;
+};
+
 using FrameCallback = std::function<DatasetResult<void>(const Frame&, const std::vector<TargetPose>&)>;
-DatasetResult<size_t> localize_frames(FrameSource& source, Localizer& localizer, const FrameCallback& on_frame);
+// A skipped frame and why (the error names its file or buffer).
+using SkipCallback = std::function<void(const Frame&, const DatasetError&)>;
+
+struct LocalizeHooks {
+  SkipCallback on_skip;                     // may be empty
+  const std::atomic<bool>* stop = nullptr;  // checked between frames (a signal handler's flag)
+};
+
+// Runs `localizer` over every frame of `source`, calling on_frame with each
+// frame's poses (at mid-exposure) until the source ends, on_frame fails or
+// *stop is set. A frame that is unreadable or that the localizer refuses is
+// skipped (on_skip) and the loop goes on.
+DatasetResult<LocalizedFrames> localize_frames(FrameSource& source, Localizer& localizer, const FrameCallback& on_frame,
+                                               const LocalizeHooks& hooks = {});
 
 }  // namespace tetrapulse

@@ -8,8 +8,10 @@
 //          markers, reprojection_px, t [m], q [x, y, z, w], and covariance: the
 //          6x6 covariance of (w, v) row-major (rad, m; R <- exp([w]x) R,
 //          t <- t + v, camera frame; pose_refinement.hpp), or null.
-// Files are written to PATH.tmp and renamed on close, so a run that fails
-// never leaves half a file; "-" writes to standard output as poses come.
+// Poses are written in place as they come, a frame at a time: write() keeps a
+// frame's lines, flush() hands them to the file in one write and flushes it. A
+// run that fails, is stopped (SIGINT) or killed therefore leaves every frame
+// flushed so far, in whole rows, and never half a row. "-" is standard output.
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -31,7 +33,9 @@ class PoseWriter {
   ~PoseWriter();
 
   DatasetResult<void> write(int64_t frame, const TargetPose& pose);  // at pose.mid_exposure_ns
-  // Flushes, closes and renames into place.
+  // Writes the rows kept since the last flush (call once per frame).
+  DatasetResult<void> flush();
+  // Flushes and closes.
   DatasetResult<void> close();
 
   size_t rows() const { return rows_; }
@@ -41,6 +45,7 @@ class PoseWriter {
   struct File {
     std::string path;  // final path ("-": stdout)
     std::FILE* stream = nullptr;
+    std::string pending;  // rows not yet flushed
   };
   DatasetResult<File*> file_for(int target_id);
 

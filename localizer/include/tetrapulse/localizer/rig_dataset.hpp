@@ -14,7 +14,9 @@ namespace tetrapulse {
 class RigDataset {
  public:
   // Reads and checks camera.yaml, targets.yaml, frames.csv and (when present)
-  // groundtruth.csv. Images are read lazily by load_image().
+  // groundtruth.csv. Images are read lazily by load_image(). A malformed line
+  // of frames.csv costs only its frame: it is left out and listed in
+  // skipped_lines().
   static DatasetResult<RigDataset> open(const std::string& folder);
 
   const std::string& folder() const { return folder_; }
@@ -23,13 +25,16 @@ class RigDataset {
   const std::vector<FrameRecord>& frames() const { return frames_; }
   const std::vector<GroundTruthRecord>& groundtruth() const { return groundtruth_; }
   bool has_groundtruth() const { return has_groundtruth_; }
+  // The frames.csv lines left out, each naming file:line and what is wrong.
+  const std::vector<DatasetError>& skipped_lines() const { return skipped_lines_; }
 
   enum class ImageMode {
     kGrey,      // 8- or 16-bit single channel; colour converted to 8-bit grey (the contract)
     kAsStored,  // as in the file (colour kept as 8-bit BGR)
   };
   // Image of frames()[index]; the error names the file when it is missing,
-  // unreadable, of an unsupported type or not camera-sized.
+  // empty, truncated or otherwise undecodable, of an unsupported type or not
+  // camera-sized.
   DatasetResult<cv::Mat> load_image(size_t index, ImageMode mode = ImageMode::kGrey) const;
 
   std::string path_of(const std::string& relative) const;
@@ -40,6 +45,7 @@ class RigDataset {
   TargetsFile targets_;
   std::vector<FrameRecord> frames_;
   std::vector<GroundTruthRecord> groundtruth_;
+  std::vector<DatasetError> skipped_lines_;
   bool has_groundtruth_ = false;
 };
 
