@@ -34,7 +34,10 @@ test-asan: asan
 
 check: test test-asan
 
-demo: build
+# The demo builds only the command line it runs (tetrapulse and tetrapulse-vision, not
+# the tests and benchmarks: those are `make check`'s), in the same build folder.
+demo: setup $(BUILD)/default/build.ninja
+	@cmake --build --preset default --target tetrapulse
 	@scripts/demo $(BUILD)/default
 
 clean:

@@ -159,7 +159,7 @@ Stopped localize_and_signal(const std::string& data, const std::string& poses, c
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = ::fork();
   if (pid == 0) {
-    std::freopen(err_file.c_str(), "w", stderr);
+    if (!std::freopen(err_file.c_str(), "w", stderr)) std::_Exit(126);
     ::execl(TETRAPULSE_CLI, TETRAPULSE_CLI, "localize", data.c_str(), "--out", poses.c_str(),
             static_cast<char*>(nullptr));
     std::_Exit(127);
