@@ -20,9 +20,9 @@
 #include "vision_commands.hpp"
 #include "pose_overlay.hpp"
 #include "progress_bar.hpp"
-#include "tetrapulse/localizer/frame_source.hpp"
-#include "tetrapulse/localizer/pose_evaluation.hpp"
-#include "tetrapulse/localizer/pose_writer.hpp"
+#include "tetrapulse/datasets/frame_source.hpp"
+#include "tetrapulse/datasets/pose_evaluation.hpp"
+#include "tetrapulse/datasets/pose_writer.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"
 #include "trajectory_plot.hpp"
 

@@ -13,9 +13,9 @@
 #include "vision_commands.hpp"
 #include "progress_bar.hpp"
 #include "ros2_output.hpp"
-#include "tetrapulse/localizer/frame_source.hpp"
+#include "tetrapulse/datasets/frame_source.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
-#include "tetrapulse/localizer/pose_writer.hpp"
+#include "tetrapulse/datasets/pose_writer.hpp"
 
 namespace tetrapulse::cli {
 
