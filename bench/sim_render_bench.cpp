@@ -55,7 +55,7 @@ void BM_RenderFrameAndEncode(benchmark::State& state) {
   Rig& r = rig();
   cv::Mat image;
   std::vector<uchar> png;
-  // The settings of RigDatasetWriter::add_frame (localizer/src/rig_dataset.cpp).
+  // The settings of RigDatasetWriter::add_frame (datasets/src/rig_dataset.cpp).
   const std::vector<int> params = {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_RLE};
   int64_t k = 0;
   for (auto _ : state) {

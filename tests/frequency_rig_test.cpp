@@ -15,7 +15,7 @@
 #include "tetrapulse/localizer/blob_extractor.hpp"
 #include "tetrapulse/localizer/blob_tracker.hpp"
 #include "tetrapulse/localizer/frequency_identifier.hpp"
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 
 namespace tetrapulse {
 namespace {

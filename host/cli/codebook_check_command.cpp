@@ -14,7 +14,7 @@
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "frequency_codebook_check.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/protocol/codebook_word.hpp"
 #include "tetrapulse/protocol/frequency_code.hpp"
 #include "tetrapulse/protocol/limits.hpp"

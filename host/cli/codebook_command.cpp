@@ -18,7 +18,7 @@
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "frequency_codebook_command.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/localizer/targets.hpp"
 #include "tetrapulse/host/board_config_yaml.hpp"
 #include "tetrapulse/host/config_text.hpp"

@@ -21,9 +21,9 @@
 #include "pose_overlay.hpp"
 #include "progress_bar.hpp"
 #include "stop_signal.hpp"
-#include "tetrapulse/localizer/frame_source.hpp"
-#include "tetrapulse/localizer/pose_evaluation.hpp"
-#include "tetrapulse/localizer/pose_writer.hpp"
+#include "tetrapulse/datasets/frame_source.hpp"
+#include "tetrapulse/datasets/pose_evaluation.hpp"
+#include "tetrapulse/datasets/pose_writer.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"
 #include "trajectory_plot.hpp"
 

@@ -7,7 +7,7 @@
 #include <functional>
 #include <string>
 
-#include "tetrapulse/localizer/dataset_error.hpp"
+#include "tetrapulse/datasets/dataset_error.hpp"
 #include "tetrapulse/sim/dataset_simulation.hpp"
 #include "tetrapulse/sim/scenario.hpp"
 

@@ -11,7 +11,7 @@
 #include "evaluation_report.hpp"
 #include "exit_codes.hpp"
 #include "vision_commands.hpp"
-#include "tetrapulse/localizer/pose_evaluation.hpp"
+#include "tetrapulse/datasets/pose_evaluation.hpp"
 
 namespace tetrapulse::cli {
 

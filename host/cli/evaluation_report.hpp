@@ -3,7 +3,7 @@
 // JSON for scripts. Positions in mm, angles in degrees (reports only).
 #include <string>
 
-#include "tetrapulse/localizer/pose_evaluation.hpp"
+#include "tetrapulse/datasets/pose_evaluation.hpp"
 
 namespace tetrapulse::cli {
 

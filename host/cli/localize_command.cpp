@@ -14,9 +14,9 @@
 #include "progress_bar.hpp"
 #include "ros2_output.hpp"
 #include "stop_signal.hpp"
-#include "tetrapulse/localizer/frame_source.hpp"
+#include "tetrapulse/datasets/frame_source.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
-#include "tetrapulse/localizer/pose_writer.hpp"
+#include "tetrapulse/datasets/pose_writer.hpp"
 
 namespace tetrapulse::cli {
 

@@ -15,7 +15,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "tetrapulse/localizer/frame_source.hpp"
+#include "tetrapulse/datasets/frame_source.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
 #include "tetrapulse/ros2/pose_publisher.hpp"
 

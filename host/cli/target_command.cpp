@@ -14,7 +14,7 @@
 #include "tetrapulse/hardware/target_analysis.hpp"
 #include "tetrapulse/hardware/target_optimizer.hpp"
 #include "tetrapulse/hardware/top_view.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse::cli {
 

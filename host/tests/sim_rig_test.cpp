@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "tetrapulse/host/sim_rig.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"
 

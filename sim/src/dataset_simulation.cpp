@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 #include "tetrapulse/sim/frame_renderer.hpp"
 #include "tetrapulse/sim/random.hpp"
 #include "tetrapulse/sim/scene_builder.hpp"

@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "tetrapulse/localizer/yaml_fields.hpp"
+#include "tetrapulse/datasets/yaml_fields.hpp"
 
 namespace tetrapulse::sim {
 

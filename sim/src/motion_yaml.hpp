@@ -2,7 +2,7 @@
 // The `motion:` block of a scenario (camera, target or distractor); sim/SCENARIOS.md.
 #include <string>
 
-#include "tetrapulse/localizer/yaml_fields.hpp"
+#include "tetrapulse/datasets/yaml_fields.hpp"
 #include "tetrapulse/sim/motion.hpp"
 
 namespace tetrapulse::sim {

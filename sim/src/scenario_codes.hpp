@@ -4,7 +4,7 @@
 // place for codes drawn from the project's codebook generator once it exists: it
 // will fill in the codes of markers that have none.
 #include "tetrapulse/localizer/targets.hpp"
-#include "tetrapulse/localizer/yaml_fields.hpp"
+#include "tetrapulse/datasets/yaml_fields.hpp"
 
 namespace tetrapulse::sim {
 

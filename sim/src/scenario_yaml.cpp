@@ -11,7 +11,7 @@
 #include "map_reader.hpp"
 #include "motion_yaml.hpp"
 #include "scenario_codes.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 
 namespace tetrapulse::sim {

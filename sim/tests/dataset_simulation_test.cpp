@@ -10,7 +10,7 @@
 
 #include <unistd.h>
 
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 #include "tetrapulse/sim/dataset_simulation.hpp"
 #include "tetrapulse/sim/frame_renderer.hpp"

@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/protocol/codebook_frequency.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"

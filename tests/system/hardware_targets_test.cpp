@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "scenario_run.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"
 
 namespace tetrapulse::system_testing {

@@ -10,8 +10,8 @@
 #include <unistd.h>
 
 #include "tetrapulse/localizer/blob_extractor.hpp"
-#include "tetrapulse/localizer/frame_source.hpp"
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/frame_source.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 #include "tetrapulse/sim/dataset_simulation.hpp"
 
 namespace tetrapulse::system_testing {

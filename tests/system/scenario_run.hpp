@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "tetrapulse/localizer/localizer.hpp"
-#include "tetrapulse/localizer/pose_evaluation.hpp"
+#include "tetrapulse/datasets/pose_evaluation.hpp"
 #include "tetrapulse/sim/scenario.hpp"
 
 namespace tetrapulse::system_testing {

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse {
 namespace {

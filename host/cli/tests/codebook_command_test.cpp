@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "exit_codes.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/protocol/codebook.hpp"
 #include "tetrapulse/protocol/codebook_frequency.hpp"
 

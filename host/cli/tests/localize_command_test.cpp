@@ -14,7 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "cli_run.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse {
 namespace {

@@ -10,7 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 
 namespace tetrapulse {

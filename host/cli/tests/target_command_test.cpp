@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse {
 namespace {

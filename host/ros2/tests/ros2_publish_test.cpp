@@ -15,7 +15,7 @@
 
 #include "child_process.hpp"
 #include "tetrapulse/localizer/camera_model.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/ros2/ros_conventions.hpp"
 
 namespace tetrapulse::ros2 {

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/localizer/testing/p3p_problems.hpp"
 
 namespace tetrapulse::testing {

@@ -14,7 +14,7 @@
 
 #include "tetrapulse/host/exposure.hpp"
 #include "tetrapulse/host/host_error.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse::host {
 

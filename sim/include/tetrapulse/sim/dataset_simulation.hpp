@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "tetrapulse/localizer/dataset_error.hpp"
+#include "tetrapulse/datasets/dataset_error.hpp"
 #include "tetrapulse/sim/scenario.hpp"
 #include "tetrapulse/sim/scene_builder.hpp"
 

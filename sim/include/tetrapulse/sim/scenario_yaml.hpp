@@ -4,7 +4,7 @@
 // fields are errors, so a misspelt field never silently takes its default.
 #include <string>
 
-#include "tetrapulse/localizer/dataset_error.hpp"
+#include "tetrapulse/datasets/dataset_error.hpp"
 #include "tetrapulse/sim/scenario.hpp"
 
 namespace tetrapulse::sim {

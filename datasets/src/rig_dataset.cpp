@@ -1,4 +1,4 @@
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 
 #include <cerrno>
 #include <cstring>

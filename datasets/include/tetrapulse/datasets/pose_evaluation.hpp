@@ -31,8 +31,8 @@
 #include <vector>
 
 #include "tetrapulse/localizer/code_clock.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 
 namespace tetrapulse {
 

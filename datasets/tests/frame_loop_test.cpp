@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "tetrapulse/localizer/frame_source.hpp"
+#include "tetrapulse/datasets/frame_source.hpp"
 #include "tetrapulse/localizer/testing/target_views.hpp"
 
 namespace tetrapulse {

@@ -1,4 +1,4 @@
-#include "tetrapulse/localizer/pose_evaluation.hpp"
+#include "tetrapulse/datasets/pose_evaluation.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Evaluation against ground truth: errors, misidentified rows, coverage and
 // identification latency, on a small dataset whose truth is known.
-#include "tetrapulse/localizer/pose_evaluation.hpp"
+#include "tetrapulse/datasets/pose_evaluation.hpp"
 
 #include <gtest/gtest.h>
 

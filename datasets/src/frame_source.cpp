@@ -1,4 +1,4 @@
-#include "tetrapulse/localizer/frame_source.hpp"
+#include "tetrapulse/datasets/frame_source.hpp"
 
 #include <chrono>
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "tetrapulse/localizer/camera_model.hpp"
-#include "tetrapulse/localizer/dataset_error.hpp"
+#include "tetrapulse/datasets/dataset_error.hpp"
 #include "tetrapulse/localizer/pose.hpp"
 #include "tetrapulse/localizer/targets.hpp"
 

@@ -5,8 +5,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 
 namespace tetrapulse {
 namespace {

@@ -1,4 +1,4 @@
-#include "tetrapulse/localizer/pose_writer.hpp"
+#include "tetrapulse/datasets/pose_writer.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse {
 

@@ -6,7 +6,7 @@
 
 #include <unistd.h>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse {
 

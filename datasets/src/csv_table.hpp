@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "tetrapulse/localizer/dataset_error.hpp"
+#include "tetrapulse/datasets/dataset_error.hpp"
 
 namespace tetrapulse::csv {
 

@@ -4,8 +4,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
-#include "tetrapulse/localizer/yaml_fields.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
+#include "tetrapulse/datasets/yaml_fields.hpp"
 
 namespace tetrapulse {
 

@@ -17,7 +17,7 @@
 #include <memory>
 #include <string>
 
-#include "tetrapulse/localizer/dataset_error.hpp"
+#include "tetrapulse/datasets/dataset_error.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
 
 namespace tetrapulse {

@@ -1,6 +1,6 @@
 // Writing poses: poses.csv reads back exactly (the contract), TUM splits by
 // target, JSON lines carry status and covariance; nothing is left half-written.
-#include "tetrapulse/localizer/pose_writer.hpp"
+#include "tetrapulse/datasets/pose_writer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 
 #include <unistd.h>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse {
 namespace {

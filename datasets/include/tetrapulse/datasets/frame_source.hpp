@@ -16,9 +16,9 @@
 
 #include <opencv2/core/mat.hpp>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 
 namespace tetrapulse {
 

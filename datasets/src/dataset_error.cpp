@@ -1,4 +1,4 @@
-#include "tetrapulse/localizer/dataset_error.hpp"
+#include "tetrapulse/datasets/dataset_error.hpp"
 
 #include <fmt/format.h>
 

@@ -7,7 +7,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse {
 

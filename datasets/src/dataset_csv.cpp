@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "csv_table.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
 
 namespace tetrapulse {
 
