@@ -34,10 +34,11 @@ test-asan: asan
 
 check: test test-asan
 
-# The demo builds only the command line it runs (tetrapulse and tetrapulse-vision, not
-# the tests and benchmarks: those are `make check`'s), in the same build folder.
+# The demo builds only the program it runs, tetrapulse-vision (`tetrapulse demo` is
+# that program's), in the same build folder: not the board commands, tests and
+# benchmarks, which `make build` and `make check` build.
 demo: setup $(BUILD)/default/build.ninja
-	@cmake --build --preset default --target tetrapulse
+	@cmake --build --preset default --target tetrapulse-vision
 	@scripts/demo $(BUILD)/default
 
 clean:
