@@ -18,7 +18,7 @@ constexpr double kFieldMarginRad = 2.0 * M_PI / 180.0;
 FrameRenderer::FrameRenderer(const Scene& scene, const RenderSettings& settings, SensorModel& sensor)
     : scene_(scene), settings_(settings), sensor_(sensor) {
   for (int s = std::max(1, settings.min_oversampling); s <= 32; s *= 2) responses_.emplace_back(settings.psf_sigma_px, s);
-  const CameraModel& cam = scene_.camera;
+  const LensProjector& cam = scene_.camera;
   const double w = cam.width() - 0.5, h = cam.height() - 0.5;
   const Eigen::Vector2d border[] = {{-0.5, -0.5}, {w, -0.5}, {-0.5, h}, {w, h},
                                     {w / 2, -0.5}, {w / 2, h}, {-0.5, h / 2}, {w, h / 2}};
@@ -49,7 +49,7 @@ void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exp
   if (!in_field_of_view(c0, r) && !in_field_of_view(c1, r) && !in_field_of_view(c2, r)) return;
 
   // How far the image moves over the exposure sets the sub-steps.
-  const CameraModel& cam = scene_.camera;
+  const LensProjector& cam = scene_.camera;
   Eigen::Vector2d p0, p1, p2;
   double travel_px;
   if (cam.project(c0, &p0) && cam.project(c1, &p1) && cam.project(c2, &p2)) {

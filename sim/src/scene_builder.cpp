@@ -25,7 +25,7 @@ BoardEmitterFactory default_board_emitter() {
 
 Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFactory& board) {
   Scene scene;
-  scene.camera = CameraModel(scenario.camera);
+  scene.camera = LensProjector(scenario.camera);
   scene.camera_motion = Trajectory(scenario.camera_motion, stream_seed(seed, kStreamMotion, 0));
   uint64_t motion_index = 1;
   const TargetsFile& tf = scenario.targets;

@@ -39,7 +39,7 @@ CameraInfo fisheye_752(double k1 = 0, double k2 = 0, double k3 = 0, double k4 = 
 // One still sphere at C (camera frame), full emission, 1 electron per fully covered pixel.
 cv::Mat render_sphere(const CameraInfo& info, const Eigen::Vector3d& C, double radius, double psf_sigma) {
   Scene scene;
-  scene.camera = CameraModel(info);
+  scene.camera = LensProjector(info);
   scene.bodies.emplace_back();
   scene.emitters.push_back(std::make_unique<FlickerEmitter>(Flicker{}));
   LightSphere light;
@@ -199,7 +199,7 @@ TEST(SphereRender, PinholeCornerBiasIsAsLargeAsTheFormulaSays) {
   EXPECT_NEAR((m.centroid - proj).norm(), bias, 1e-3);
   // The second-order expansion agrees with the exact formula.
   Eigen::Vector2d second_order;
-  ASSERT_TRUE(silhouette_centroid_bias(CameraModel(info), C, 0.015, &second_order));
+  ASSERT_TRUE(silhouette_centroid_bias(LensProjector(info), C, 0.015, &second_order));
   EXPECT_NEAR((second_order - (centre - proj)).norm(), 0.0, 0.01 * bias);
 }
 
@@ -212,7 +212,7 @@ struct BiasSweep {
 
 BiasSweep sweep(const CameraInfo& info) {
   BiasSweep out;
-  const CameraModel model(info);
+  const LensProjector model(info);
   for (double dist : {0.3, 0.7, 1.5, 3.0}) {
     for (double radius : {0.005, 0.015}) {
       const double margin = 2 * info.fx * radius / dist + 8;

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "tetrapulse/localizer/camera_model.hpp"
+#include "tetrapulse/sim/lens_projector.hpp"
 #include "tetrapulse/localizer/pose.hpp"
 #include "tetrapulse/sim/led_emitter.hpp"
 #include "tetrapulse/sim/motion.hpp"
@@ -32,7 +33,7 @@ struct SceneTarget {
 };
 
 struct Scene {
-  CameraModel camera{CameraInfo{}};
+  LensProjector camera{CameraInfo{}};
   Trajectory camera_motion;
   std::vector<Trajectory> bodies;
   std::vector<std::unique_ptr<LedEmitter>> emitters;
