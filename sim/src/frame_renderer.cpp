@@ -33,6 +33,13 @@ Eigen::Vector3d FrameRenderer::centre_in_camera(const LightSphere& light, double
   return scene_.body_in_camera(light.body, t_ns * 1e-9).apply(light.position_m);
 }
 
+double FrameRenderer::beam_factor(const LightSphere& light, const Eigen::Vector3d& c, double t_ns) const {
+  if (light.beam_exponent == 0) return 1.0;
+  const Eigen::Vector3d axis_C = scene_.body_in_camera(light.body, t_ns * 1e-9).R * light.beam_axis_B;
+  const double cosine = -axis_C.dot(c) / c.norm();  // the camera seen from the light
+  return cosine > 0 ? std::pow(cosine, light.beam_exponent) : 0.0;
+}
+
 bool FrameRenderer::in_field_of_view(const Eigen::Vector3d& c, double radius_m) const {
   const double alpha = sphere_half_angle(c, radius_m);
   if (!std::isfinite(alpha)) return false;
@@ -74,8 +81,10 @@ void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exp
     if (!(e > 0)) continue;
     const Eigen::Vector3d c = steps == 1 ? c1 : centre_in_camera(light, 0.5 * static_cast<double>(a + b));
     if (!in_field_of_view(c, r)) continue;
+    const double beam = beam_factor(light, c, 0.5 * static_cast<double>(a + b));
+    if (!(beam > 0)) continue;
     if (!sphere_outline(cam, c, r, settings_.outline_tolerance_px, &outlines_[weights_.size()])) continue;
-    weights_.push_back(e * radiance_e_per_ns * static_cast<double>(b - a));
+    weights_.push_back(beam * e * radiance_e_per_ns * static_cast<double>(b - a));
   }
   if (weights_.empty()) return;
 

@@ -22,6 +22,8 @@ struct LightSphere {
   double radius_m = 0;
   double radiance_e_per_ms = 0;  // electrons per fully covered pixel per ms of exposure at full emission
   int emitter = 0;               // index into Scene::emitters
+  double beam_exponent = 0;      // radiance x cos(view angle off beam_axis_B)^beam_exponent (0: uniform)
+  Eigen::Vector3d beam_axis_B = Eigen::Vector3d::UnitZ();  // body frame, unit
   int emitter_index = 0;         // which light of that emitter (a marker's index 0..3)
 };
 
