@@ -18,7 +18,7 @@ constexpr double kFieldMarginRad = 2.0 * M_PI / 180.0;
 FrameRenderer::FrameRenderer(const Scene& scene, const RenderSettings& settings, SensorModel& sensor)
     : scene_(scene), settings_(settings), sensor_(sensor) {
   for (int s = std::max(1, settings.min_oversampling); s <= 32; s *= 2) responses_.emplace_back(settings.psf_sigma_px, s);
-  const CameraModel& cam = scene_.camera;
+  const LensProjector& cam = scene_.camera;
   const double w = cam.width() - 0.5, h = cam.height() - 0.5;
   const Eigen::Vector2d border[] = {{-0.5, -0.5}, {w, -0.5}, {-0.5, h}, {w, h},
                                     {w / 2, -0.5}, {w / 2, h}, {-0.5, h / 2}, {w, h / 2}};
@@ -31,6 +31,13 @@ FrameRenderer::FrameRenderer(const Scene& scene, const RenderSettings& settings,
 
 Eigen::Vector3d FrameRenderer::centre_in_camera(const LightSphere& light, double t_ns) const {
   return scene_.body_in_camera(light.body, t_ns * 1e-9).apply(light.position_m);
+}
+
+double FrameRenderer::beam_factor(const LightSphere& light, const Eigen::Vector3d& c, double t_ns) const {
+  if (light.beam_exponent == 0) return 1.0;
+  const Eigen::Vector3d axis_C = scene_.body_in_camera(light.body, t_ns * 1e-9).R * light.beam_axis_B;
+  const double cosine = -axis_C.dot(c) / c.norm();  // the camera seen from the light
+  return cosine > 0 ? std::pow(cosine, light.beam_exponent) : 0.0;
 }
 
 bool FrameRenderer::in_field_of_view(const Eigen::Vector3d& c, double radius_m) const {
@@ -49,7 +56,7 @@ void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exp
   if (!in_field_of_view(c0, r) && !in_field_of_view(c1, r) && !in_field_of_view(c2, r)) return;
 
   // How far the image moves over the exposure sets the sub-steps.
-  const CameraModel& cam = scene_.camera;
+  const LensProjector& cam = scene_.camera;
   Eigen::Vector2d p0, p1, p2;
   double travel_px;
   if (cam.project(c0, &p0) && cam.project(c1, &p1) && cam.project(c2, &p2)) {
@@ -74,8 +81,10 @@ void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exp
     if (!(e > 0)) continue;
     const Eigen::Vector3d c = steps == 1 ? c1 : centre_in_camera(light, 0.5 * static_cast<double>(a + b));
     if (!in_field_of_view(c, r)) continue;
+    const double beam = beam_factor(light, c, 0.5 * static_cast<double>(a + b));
+    if (!(beam > 0)) continue;
     if (!sphere_outline(cam, c, r, settings_.outline_tolerance_px, &outlines_[weights_.size()])) continue;
-    weights_.push_back(e * radiance_e_per_ns * static_cast<double>(b - a));
+    weights_.push_back(beam * e * radiance_e_per_ns * static_cast<double>(b - a));
   }
   if (weights_.empty()) return;
 

@@ -104,7 +104,7 @@ void read_camera(Fields& f, const YAML::Node& node, CameraInfo* cam, MotionSpec*
 void read_sensor(Fields& f, const YAML::Node& node, SensorConfig* s) {
   MapReader r(f, node, "sensor",
               {"bit_depth", "gain_e_per_dn", "read_noise_e", "full_well_e", "black_level_dn", "background_e_per_ms",
-               "texture_contrast", "texture_scale_px", "prnu", "dsnu_e", "noise"});
+               "texture_contrast", "texture_scale_px", "prnu", "dsnu_e", "noise", "blooming"});
   s->bit_depth = static_cast<int>(r.integer("bit_depth", Range::closed(8, 16), s->bit_depth));
   if (r.ok() && s->bit_depth != 8 && s->bit_depth != 16) r.fail("bit_depth", fmt::format("must be 8 or 16, got {}", s->bit_depth));
   s->gain_e_per_dn = r.number("gain_e_per_dn", Range::positive(), s->gain_e_per_dn);
@@ -117,6 +117,7 @@ void read_sensor(Fields& f, const YAML::Node& node, SensorConfig* s) {
   s->prnu = r.number("prnu", Range::closed(0, 0.5), s->prnu);
   s->dsnu_e = r.number("dsnu_e", Range::non_negative(), s->dsnu_e);
   s->noise = r.boolean("noise", s->noise);
+  s->blooming = r.number("blooming", Range::closed(0, 1), s->blooming);
 }
 
 void read_render(Fields& f, const YAML::Node& node, RenderSettings* s) {
@@ -192,13 +193,19 @@ void read_occlusions(Fields& f, const YAML::Node& list, const std::string& path,
 void read_target_simulation(Fields& f, const YAML::Node& node, size_t index, bool synchronized, TargetSimulation* out) {
   const std::string path = fmt::format("targets[{}]", index);
   MapReader r(f, node, path,
-              {"id", "name", "marker_diameter_m", "markers", "radiance_e_per_ms", "board", "occlusions", "motion"});
+              {"id", "name", "marker_diameter_m", "markers", "radiance_e_per_ms", "board", "occlusions", "motion",
+               "beam_exponent", "beam_axis", "radiance_spread"});
   // The markers themselves were read by the targets.yaml reader; only unknown keys are checked here.
   const YAML::Node markers = r.child("markers");
   for (size_t k = 0; k < markers.size() && r.ok(); ++k) {
     MapReader m(f, markers[k], fmt::format("{}.markers[{}]", path, k), {"position_m", "code"});
   }
   out->radiance_e_per_ms = r.number("radiance_e_per_ms", Range::non_negative(), out->radiance_e_per_ms);
+  out->beam_exponent = r.number("beam_exponent", Range::closed(0, 100), out->beam_exponent);
+  const Eigen::Vector3d axis = r.vec3("beam_axis", Range::closed(-1e6, 1e6), out->beam_axis_B);
+  if (r.ok() && !(axis.norm() > 0)) r.fail("beam_axis", "must not be zero");
+  if (r.ok()) out->beam_axis_B = axis.normalized();
+  out->radiance_spread = r.number("radiance_spread", Range::closed(0, 2), out->radiance_spread);
   const YAML::Node board = r.child("board", false);
   if (board.IsDefined()) {
     read_board(f, board, path + ".board", synchronized, &out->clock);

@@ -1,9 +1,12 @@
 #include "tetrapulse/sim/scene_builder.hpp"
 
+#include <cmath>
+
 #include "tetrapulse/sim/code_emitter.hpp"
 #if TETRAPULSE_SIM_FIRMWARE_BOARDS
 #include "tetrapulse/sim/firmware_board_emitter.hpp"
 #endif
+#include "tetrapulse/sim/noise_sampler.hpp"
 #include "tetrapulse/sim/occluded_emitter.hpp"
 #include "tetrapulse/sim/random.hpp"
 
@@ -25,7 +28,7 @@ BoardEmitterFactory default_board_emitter() {
 
 Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFactory& board) {
   Scene scene;
-  scene.camera = CameraModel(scenario.camera);
+  scene.camera = LensProjector(scenario.camera);
   scene.camera_motion = Trajectory(scenario.camera_motion, stream_seed(seed, kStreamMotion, 0));
   uint64_t motion_index = 1;
   const TargetsFile& tf = scenario.targets;
@@ -46,6 +49,12 @@ Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFac
       light.position_m = target.markers[static_cast<size_t>(m)].position_m;
       light.radius_m = target.marker_diameter_m / 2;
       light.radiance_e_per_ms = sim.radiance_e_per_ms;
+      if (sim.radiance_spread > 0) {
+        NoiseSampler spread(stream_seed(seed, kStreamBrightness, scene.lights.size()));
+        light.radiance_e_per_ms *= std::exp(sim.radiance_spread * spread.normal());
+      }
+      light.beam_exponent = sim.beam_exponent;
+      light.beam_axis_B = sim.beam_axis_B;
       light.emitter = emitter;
       light.emitter_index = m;
       st.lights.push_back(static_cast<int>(scene.lights.size()));

@@ -93,7 +93,47 @@ void SensorModel::expose_as(const cv::Mat& light_e, double exposure_ms, uint64_t
   }
 }
 
+void bloom_columns(double full_well_e, double fraction, cv::Mat* light_e) {
+  const int h = light_e->rows, w = light_e->cols;
+  std::vector<double> spill(static_cast<size_t>(h)), column(static_cast<size_t>(h));
+  for (int x = 0; x < w; ++x) {
+    bool any = false;
+    for (int y = 0; y < h; ++y) {
+      const double v = light_e->at<float>(y, x);
+      const double s = fraction * std::max(0.0, v - full_well_e);
+      spill[static_cast<size_t>(y)] = s;
+      column[static_cast<size_t>(y)] = v - s;
+      any = any || s > 0;
+    }
+    if (!any) continue;
+    // Half of each pixel's spill runs down the column, half up; a full pixel passes it on.
+    const auto run = [&](int from, int to, int step) {
+      double carry = 0;
+      for (int y = from; y != to; y += step) {
+        double& v = column[static_cast<size_t>(y)];
+        const double room = std::max(0.0, full_well_e - v);
+        const double kept = std::min(room, carry);
+        v += kept;
+        carry = carry - kept + 0.5 * spill[static_cast<size_t>(y)];
+      }
+    };
+    run(0, h, 1);
+    run(h - 1, -1, -1);
+    for (int y = 0; y < h; ++y) light_e->at<float>(y, x) = static_cast<float>(column[static_cast<size_t>(y)]);
+  }
+}
+
 void SensorModel::expose(const cv::Mat& light_e, int64_t exposure_ns, uint64_t noise_seed, cv::Mat* image) {
+  if (config_.blooming > 0) {
+    bloomed_ = light_e.clone();
+    bloom_columns(config_.full_well_e, config_.blooming, &bloomed_);
+    expose_light(bloomed_, exposure_ns, noise_seed, image);
+    return;
+  }
+  expose_light(light_e, exposure_ns, noise_seed, image);
+}
+
+void SensorModel::expose_light(const cv::Mat& light_e, int64_t exposure_ns, uint64_t noise_seed, cv::Mat* image) {
   prepare_dark_frame(exposure_ns);
   const double exposure_ms = static_cast<double>(exposure_ns) * 1e-6;
   if (config_.bit_depth == 16) {

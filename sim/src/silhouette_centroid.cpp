@@ -29,7 +29,7 @@ namespace {
 
 // h(s): pixel of direction c + s1 e1 + s2 e2.
 struct Gnomonic {
-  const CameraModel& camera;
+  const LensProjector& camera;
   Eigen::Vector3d c, e1, e2;
   bool h(double s1, double s2, Eigen::Vector2d* px) const { return camera.project(c + s1 * e1 + s2 * e2, px); }
   // dh/ds by central differences with step d.
@@ -44,7 +44,7 @@ struct Gnomonic {
 
 }  // namespace
 
-bool silhouette_centroid_bias(const CameraModel& camera, const Eigen::Vector3d& centre_C, double radius_m,
+bool silhouette_centroid_bias(const LensProjector& camera, const Eigen::Vector3d& centre_C, double radius_m,
                               Eigen::Vector2d* bias_px) {
   const double alpha = sphere_half_angle(centre_C, radius_m);
   if (!std::isfinite(alpha)) return false;

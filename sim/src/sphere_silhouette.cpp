@@ -16,27 +16,28 @@ double sphere_half_angle(const Eigen::Vector3d& centre_C, double radius_m) {
 
 namespace {
 
-// Outline with n points; false when a point does not project.
-bool outline_points(const CameraModel& camera, const Eigen::Vector3d& c, const Eigen::Vector3d& e1,
+// Outline with n points; false when a point does not project. One OpenCV call
+// for all of them: a call per point costs more than the projection.
+bool outline_points(const LensProjector& camera, const Eigen::Vector3d& c, const Eigen::Vector3d& e1,
                     const Eigen::Vector3d& e2, double alpha, int n, std::vector<Eigen::Vector2d>* out) {
-  out->resize(static_cast<size_t>(n));
+  thread_local std::vector<Eigen::Vector3d> directions;
+  directions.resize(static_cast<size_t>(n));
   const double ca = std::cos(alpha), sa = std::sin(alpha);
   // (cos phi, sin phi) by rotation steps: n sin/cos pairs cost more than the projection.
   const double cd = std::cos(2 * M_PI / n), sd = std::sin(2 * M_PI / n);
   double cp = 1, sp = 0;
   for (int k = 0; k < n; ++k) {
-    const Eigen::Vector3d d = ca * c + sa * (cp * e1 + sp * e2);
-    if (!camera.project(d, &(*out)[static_cast<size_t>(k)])) return false;
+    directions[static_cast<size_t>(k)] = ca * c + sa * (cp * e1 + sp * e2);
     const double next_c = cp * cd - sp * sd;
     sp = sp * cd + cp * sd;
     cp = next_c;
   }
-  return true;
+  return camera.project(directions, out);
 }
 
 }  // namespace
 
-bool sphere_outline(const CameraModel& camera, const Eigen::Vector3d& centre_C, double radius_m, double tolerance_px,
+bool sphere_outline(const LensProjector& camera, const Eigen::Vector3d& centre_C, double radius_m, double tolerance_px,
                     std::vector<Eigen::Vector2d>* outline) {
   const double alpha = sphere_half_angle(centre_C, radius_m);
   if (!std::isfinite(alpha)) return false;

@@ -158,7 +158,7 @@ TEST(FrameRenderer, ExposureStraddlingABitEdgeMixesBothLevels) {
   info.cx = 47.5;
   info.cy = 31.5;
   Scene scene;
-  scene.camera = CameraModel(info);
+  scene.camera = LensProjector(info);
   scene.bodies.emplace_back();
   const Timebase tb = timebase(0, 10'000'000);
   const double low = 0.3;

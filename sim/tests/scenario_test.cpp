@@ -25,8 +25,9 @@ Scenario builtin(const std::string& name) {
 }
 
 TEST(BuiltinScenarios, AllExistAndParse) {
-  const std::set<std::string> expected = {"paper-exp1", "paper-far", "swarm",   "unsync",
-                                          "passive",    "clutter",   "fisheye", "frequency"};
+  const std::set<std::string> expected = {"paper-exp1", "paper-far", "swarm",      "unsync",     "passive",
+                                          "clutter",    "fisheye",   "frequency",  "agile",      "distortion",
+                                          "beam-spread", "dropouts"};
   std::set<std::string> names;
   for (const BuiltinScenario& b : builtin_scenarios()) {
     names.insert(b.name);

@@ -142,5 +142,29 @@ TEST(SensorModel, SameSeedSameImageOtherSeedOtherNoise) {
   EXPECT_GT(cv::norm(ia, ic, cv::NORM_L1), 0.0);
 }
 
+// Blooming: charge over full well runs up and down the column, fills the
+// neighbours to full well, runs past full ones, and none is lost inside the image.
+TEST(SensorModel, BloomingSpillsAlongTheColumnAndConservesCharge) {
+  cv::Mat l(41, 5, CV_32F, cv::Scalar(0));
+  l.at<float>(20, 2) = 20 * 1000.0f;  // 20x a 1000 e- full well
+  cv::Mat bloomed = l.clone();
+  bloom_columns(1000, 1.0, &bloomed);
+  EXPECT_NEAR(cv::sum(bloomed)[0], 20000, 1e-2);
+  EXPECT_FLOAT_EQ(bloomed.at<float>(20, 2), 1000);
+  for (int d = 1; d <= 9; ++d) {  // 19 000 e- over: 9.5 pixels each way at full well
+    EXPECT_FLOAT_EQ(bloomed.at<float>(20 + d, 2), 1000) << d;
+    EXPECT_FLOAT_EQ(bloomed.at<float>(20 - d, 2), 1000) << d;
+  }
+  EXPECT_NEAR(bloomed.at<float>(30, 2), 500, 1e-3);
+  EXPECT_NEAR(bloomed.at<float>(10, 2), 500, 1e-3);
+  EXPECT_EQ(bloomed.at<float>(31, 2), 0);
+  EXPECT_EQ(cv::countNonZero(bloomed.col(1)) + cv::countNonZero(bloomed.col(3)), 0);
+  // Half the excess leaves: 9 500 e- stay over full well in the pixel (clipped by the sensor).
+  cv::Mat half = l.clone();
+  bloom_columns(1000, 0.5, &half);
+  EXPECT_NEAR(half.at<float>(20, 2), 10500, 1e-2);
+  EXPECT_NEAR(cv::sum(half)[0], 20000, 1e-2);
+}
+
 }  // namespace
 }  // namespace tetrapulse::sim

@@ -37,15 +37,18 @@ CameraInfo fisheye_752(double k1 = 0, double k2 = 0, double k3 = 0, double k4 = 
 }
 
 // One still sphere at C (camera frame), full emission, 1 electron per fully covered pixel.
-cv::Mat render_sphere(const CameraInfo& info, const Eigen::Vector3d& C, double radius, double psf_sigma) {
+cv::Mat render_sphere(const CameraInfo& info, const Eigen::Vector3d& C, double radius, double psf_sigma,
+                      double beam_exponent = 0, const Eigen::Vector3d& beam_axis = Eigen::Vector3d::UnitZ()) {
   Scene scene;
-  scene.camera = CameraModel(info);
+  scene.camera = LensProjector(info);
   scene.bodies.emplace_back();
   scene.emitters.push_back(std::make_unique<FlickerEmitter>(Flicker{}));
   LightSphere light;
   light.position_m = C;
   light.radius_m = radius;
   light.radiance_e_per_ms = 1.0;
+  light.beam_exponent = beam_exponent;
+  light.beam_axis_B = beam_axis;
   scene.lights.push_back(light);
   // Only the light is read; the sensor is never asked to expose.
   static SensorModel sensor(info.width, info.height, SensorConfig{}, 1);
@@ -199,7 +202,7 @@ TEST(SphereRender, PinholeCornerBiasIsAsLargeAsTheFormulaSays) {
   EXPECT_NEAR((m.centroid - proj).norm(), bias, 1e-3);
   // The second-order expansion agrees with the exact formula.
   Eigen::Vector2d second_order;
-  ASSERT_TRUE(silhouette_centroid_bias(CameraModel(info), C, 0.015, &second_order));
+  ASSERT_TRUE(silhouette_centroid_bias(LensProjector(info), C, 0.015, &second_order));
   EXPECT_NEAR((second_order - (centre - proj)).norm(), 0.0, 0.01 * bias);
 }
 
@@ -212,7 +215,7 @@ struct BiasSweep {
 
 BiasSweep sweep(const CameraInfo& info) {
   BiasSweep out;
-  const CameraModel model(info);
+  const LensProjector model(info);
   for (double dist : {0.3, 0.7, 1.5, 3.0}) {
     for (double radius : {0.005, 0.015}) {
       const double margin = 2 * info.fx * radius / dist + 8;
@@ -261,6 +264,19 @@ TEST(SphereRender, DistortedPinholeMatchesOpenCvWhereBiasIsSmall) {
 
 TEST(SphereRender, FisheyeMatchesOpenCvWhereBiasIsSmall) {
   check_sweep("equidistant", fisheye_752(0.02, -0.01, 0.003, -0.001));
+}
+
+// The LED beam: flux scales with cos(view angle)^m, none from behind.
+TEST(SphereRender, BeamPatternScalesTheFluxWithTheViewAngle) {
+  const CameraInfo info = pinhole_752();
+  const Eigen::Vector3d C(0, 0, 1);
+  const double uniform = cv::sum(render_sphere(info, C, 0.015, 0.6))[0];
+  const Eigen::Vector3d at_camera(0, 0, -1);
+  const Eigen::Vector3d at_60(std::sin(M_PI / 3), 0, -std::cos(M_PI / 3));
+  EXPECT_NEAR(cv::sum(render_sphere(info, C, 0.015, 0.6, 1, at_camera))[0], uniform, 1e-6 * uniform);
+  EXPECT_NEAR(cv::sum(render_sphere(info, C, 0.015, 0.6, 1, at_60))[0], 0.5 * uniform, 1e-6 * uniform);
+  EXPECT_NEAR(cv::sum(render_sphere(info, C, 0.015, 0.6, 2, at_60))[0], 0.25 * uniform, 1e-6 * uniform);
+  EXPECT_EQ(cv::sum(render_sphere(info, C, 0.015, 0.6, 1, -at_camera))[0], 0.0);
 }
 
 }  // namespace

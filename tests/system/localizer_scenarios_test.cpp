@@ -29,6 +29,10 @@ const Acceptance kScenarios[] = {
     {"paper-exp1", 0.005, 0.3, 0.99}, {"paper-far", 0.02, 0.5, 0.99}, {"passive", INFINITY, INFINITY, 0.95},
     {"swarm", INFINITY, INFINITY, 0.99}, {"unsync", INFINITY, INFINITY, 0.99}, {"clutter", INFINITY, INFINITY, 0.99},
     {"fisheye", INFINITY, INFINITY, 0.99},   {"frequency", INFINITY, INFINITY, 0.99},
+    // Issue 14's robustness matrix (localizer/ACCURACY.md): agile flight, strong
+    // distortion, LED beams and brightness spread, drop-outs.
+    {"agile", INFINITY, INFINITY, 0.99}, {"distortion", INFINITY, INFINITY, 0.99},
+    {"beam-spread", INFINITY, INFINITY, 0.99}, {"dropouts", INFINITY, INFINITY, 0.99},
 };
 
 // Frequency codes (square waves, protocol/SPEC.md 8.5) are seen at their apparent

@@ -49,6 +49,8 @@ class FrameRenderer {
   Eigen::Vector3d centre_in_camera(const LightSphere& light, double t_ns) const;
   // False when the sphere lies wholly outside the lens's field of view.
   bool in_field_of_view(const Eigen::Vector3d& centre_C, double radius_m) const;
+  // Radiance factor of the LED beam towards the camera (1 for a uniform light) at rig time t_ns, centre c (camera frame).
+  double beam_factor(const LightSphere& light, const Eigen::Vector3d& centre_C, double t_ns) const;
   void add_sphere(const LightSphere& light, int64_t t0_ns, int64_t exposure_ns, cv::Mat* light_e);
 
   const Scene& scene_;

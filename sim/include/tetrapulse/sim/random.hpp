@@ -45,6 +45,7 @@ enum RandomStream : uint64_t {
   kStreamBackground = 3,
   kStreamMotion = 4,
   kStreamDroppedFrames = 5,
+  kStreamBrightness = 6,
 };
 
 }  // namespace tetrapulse::sim

@@ -36,6 +36,13 @@ struct FrameSchedule {
 struct TargetSimulation {
   MotionSpec motion;                  // the target's pose in the world
   double radiance_e_per_ms = 1600;    // electrons per fully covered pixel per ms at full emission
+  // LED beam: radiance scales with cos(angle between beam_axis and the direction
+  // to the camera)^beam_exponent, zero behind (0: a uniform sphere; 1: Lambertian).
+  double beam_exponent = 0;
+  Eigen::Vector3d beam_axis_B = Eigen::Vector3d::UnitZ();  // body frame, unit
+  // Per-marker brightness spread: each marker's radiance is multiplied by
+  // exp(radiance_spread N(0,1)) drawn once from the seed (0: all alike).
+  double radiance_spread = 0;
   BoardClockSpec clock;               // its board's clock (free_running follows the time base)
   std::array<TimeIntervals, 4> occluded;  // per marker: when it is hidden from the camera
 };

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "tetrapulse/localizer/camera_model.hpp"
+#include "tetrapulse/sim/lens_projector.hpp"
 #include "tetrapulse/localizer/pose.hpp"
 #include "tetrapulse/sim/led_emitter.hpp"
 #include "tetrapulse/sim/motion.hpp"
@@ -21,6 +22,8 @@ struct LightSphere {
   double radius_m = 0;
   double radiance_e_per_ms = 0;  // electrons per fully covered pixel per ms of exposure at full emission
   int emitter = 0;               // index into Scene::emitters
+  double beam_exponent = 0;      // radiance x cos(view angle off beam_axis_B)^beam_exponent (0: uniform)
+  Eigen::Vector3d beam_axis_B = Eigen::Vector3d::UnitZ();  // body frame, unit
   int emitter_index = 0;         // which light of that emitter (a marker's index 0..3)
 };
 
@@ -32,7 +35,7 @@ struct SceneTarget {
 };
 
 struct Scene {
-  CameraModel camera{CameraInfo{}};
+  LensProjector camera{CameraInfo{}};
   Trajectory camera_motion;
   std::vector<Trajectory> bodies;
   std::vector<std::unique_ptr<LedEmitter>> emitters;

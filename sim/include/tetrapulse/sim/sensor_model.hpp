@@ -29,7 +29,17 @@ struct SensorConfig {
   double prnu = 0.01;                // relative standard deviation of the pixel gains
   double dsnu_e = 3;                 // scale of the pixel dark offsets, electrons
   bool noise = true;                 // false: expected values (no shot or read noise)
+  // Blooming: this fraction [0, 1] of the light charge above full_well_e spills
+  // out of a pixel, half up and half down its column, filling the neighbours up
+  // to full well and passing on beyond (0: clipped charge is lost).
+  double blooming = 0;
 };
+
+// Blooming of light charge (CV_32F electrons per pixel), in place: `fraction` of
+// what exceeds full_well_e leaves each pixel, half up and half down its column;
+// it fills the pixels it reaches up to full_well_e and runs on past full ones.
+// Charge is conserved except what runs off the image's top or bottom.
+void bloom_columns(double full_well_e, double fraction, cv::Mat* light_e);
 
 class SensorModel {
  public:
@@ -44,6 +54,7 @@ class SensorModel {
   void expose(const cv::Mat& light_e, int64_t exposure_ns, uint64_t noise_seed, cv::Mat* image);
 
  private:
+  void expose_light(const cv::Mat& light_e, int64_t exposure_ns, uint64_t noise_seed, cv::Mat* image);
   template <typename Pixel>
   void expose_as(const cv::Mat& light_e, double exposure_ms, uint64_t noise_seed, cv::Mat* image) const;
   // Mean and noise of each pixel that no light reaches, for one exposure time (most pixels).
@@ -55,6 +66,7 @@ class SensorModel {
   cv::Mat offset_;      // CV_32F, o_p electrons
   int64_t dark_exposure_ns_ = -1;
   cv::Mat dark_mean_;   // CV_32F, mu_p without light
+  cv::Mat bloomed_;     // CV_32F, the light after blooming (blooming > 0)
   cv::Mat dark_sd_;     // CV_32F, sqrt(mu_p + read^2), or -1 where the Poisson draw must be exact
 };
 

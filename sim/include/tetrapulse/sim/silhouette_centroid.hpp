@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include "tetrapulse/localizer/camera_model.hpp"
+#include "tetrapulse/sim/lens_projector.hpp"
 
 namespace tetrapulse::sim {
 
@@ -26,7 +27,7 @@ bool pinhole_silhouette_ellipse(const CameraInfo& camera, const Eigen::Vector3d&
                                 Eigen::Vector2d* centre_px, double* area_px2);
 
 // Leading-order bias  centroid - project(C)  of the silhouette under any model (pixels).
-bool silhouette_centroid_bias(const CameraModel& camera, const Eigen::Vector3d& centre_C, double radius_m,
+bool silhouette_centroid_bias(const LensProjector& camera, const Eigen::Vector3d& centre_C, double radius_m,
                               Eigen::Vector2d* bias_px);
 
 }  // namespace tetrapulse::sim

@@ -13,13 +13,14 @@
 #include <Eigen/Core>
 
 #include "tetrapulse/localizer/camera_model.hpp"
+#include "tetrapulse/sim/lens_projector.hpp"
 
 namespace tetrapulse::sim {
 
 // Writes the outline (pixels) of the sphere's silhouette. Returns false when the
 // camera is inside the sphere or some direction of the cone cannot be projected
 // (behind the camera or outside the model's range): such a sphere is not drawn.
-bool sphere_outline(const CameraModel& camera, const Eigen::Vector3d& centre_C, double radius_m, double tolerance_px,
+bool sphere_outline(const LensProjector& camera, const Eigen::Vector3d& centre_C, double radius_m, double tolerance_px,
                     std::vector<Eigen::Vector2d>* outline);
 
 // Cone half-angle alpha of the sphere seen from the camera (radians); NaN when the camera is inside.
