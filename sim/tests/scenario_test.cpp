@@ -27,7 +27,8 @@ Scenario builtin(const std::string& name) {
 TEST(BuiltinScenarios, AllExistAndParse) {
   const std::set<std::string> expected = {"paper-exp1", "paper-far", "swarm",      "unsync",     "passive",
                                           "clutter",    "fisheye",   "frequency",  "agile",      "distortion",
-                                          "beam-spread", "dropouts"};
+                                          "beam-spread", "dropouts",  "sat-exp1-5x", "sat-exp1-20x", "sat-clutter",
+                                          "sat-fisheye", "agile-sat"};
   std::set<std::string> names;
   for (const BuiltinScenario& b : builtin_scenarios()) {
     names.insert(b.name);
@@ -167,7 +168,14 @@ TEST(BuiltinScenarios, CodesMeetTheirTimeBasesConstraints) {
       EXPECT_TRUE(r.ok()) << b.name << ": " << protocol::frequency_fault_name(r.fault) << " at code " << r.code;
       continue;
     }
-    EXPECT_EQ(code_violations(codes, s.targets.timebase.synchronized), "") << b.name;
+    // One code per target (the crowds): a target whose markers all carry one code counts it once.
+    std::vector<Code> distinct;
+    for (size_t t = 0; t < s.targets.targets.size(); ++t) {
+      const auto first = codes.begin() + static_cast<std::ptrdiff_t>(4 * t);
+      const bool one = std::all_of(first, first + 4, [&](const Code& c) { return c.bits == first->bits && c.length == first->length; });
+      distinct.insert(distinct.end(), first, one ? first + 1 : first + 4);
+    }
+    EXPECT_EQ(code_violations(distinct, s.targets.timebase.synchronized), "") << b.name;
   }
 }
 

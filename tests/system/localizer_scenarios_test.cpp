@@ -33,6 +33,11 @@ const Acceptance kScenarios[] = {
     // distortion, LED beams and brightness spread, drop-outs.
     {"agile", INFINITY, INFINITY, 0.99}, {"distortion", INFINITY, INFINITY, 0.99},
     {"beam-spread", INFINITY, INFINITY, 0.99}, {"dropouts", INFINITY, INFINITY, 0.99},
+    // Saturation (lit markers 5-20x full well, the two_level low level clipped too,
+    // blooming), saturation x motion, and crowds that cross (one code per drone).
+    {"sat-exp1-5x", INFINITY, INFINITY, 0.99}, {"sat-exp1-20x", INFINITY, INFINITY, 0.99},
+    {"sat-clutter", INFINITY, INFINITY, 0.99}, {"sat-fisheye", INFINITY, INFINITY, 0.99},
+    {"agile-sat", INFINITY, INFINITY, 0.99},
 };
 
 // Frequency codes (square waves, protocol/SPEC.md 8.5) are seen at their apparent
