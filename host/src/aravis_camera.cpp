@@ -109,16 +109,23 @@ class AravisCamera final : public Camera {
   }
 
  private:
-  // Sets one feature when the camera has it; otherwise a line naming it.
-  template <typename Set>
-  void feature(const char* feature_name, std::vector<std::string>* notes, HostResult<void>* failed, Set set) {
+  bool has(const char* feature_name) {
     GError* e = nullptr;
     const gboolean available = arv_camera_is_feature_available(camera_, feature_name, &e);
-    if (e || !available) {
-      if (e) g_error_free(e);
+    if (e) g_error_free(e);
+    return available && !e;
+  }
+
+  // Sets one feature when the camera has it (or its older SFNC name `alternative`,
+  // which Aravis' setters fall back to); otherwise a line naming it.
+  template <typename Set>
+  void feature(const char* feature_name, std::vector<std::string>* notes, HostResult<void>* failed, Set set,
+               const char* alternative = nullptr) {
+    if (!has(feature_name) && !(alternative && has(alternative))) {
       notes->push_back(name() + ": camera has no feature " + feature_name + " (left as it is)");
       return;
     }
+    GError* e = nullptr;
     set(&e);
     if (e && *failed) *failed = host_error(HostErrorKind::kBadInput, name(), std::string(feature_name) + ": " + take_message(e));
   }
@@ -133,12 +140,15 @@ class AravisCamera final : public Camera {
     if (s.width) feature("Width", &notes, &failed, [&](GError** e) { arv_camera_set_integer(camera_, "Width", *s.width, e); });
     if (s.height) feature("Height", &notes, &failed, [&](GError** e) { arv_camera_set_integer(camera_, "Height", *s.height, e); });
     if (s.exposure_us) {
-      feature("ExposureTime", &notes, &failed, [&](GError** e) { arv_camera_set_exposure_time(camera_, *s.exposure_us, e); });
+      feature(
+          "ExposureTime", &notes, &failed, [&](GError** e) { arv_camera_set_exposure_time(camera_, *s.exposure_us, e); },
+          "ExposureTimeAbs");
     }
-    if (s.gain_db) feature("Gain", &notes, &failed, [&](GError** e) { arv_camera_set_gain(camera_, *s.gain_db, e); });
+    if (s.gain_db) feature(
+          "Gain", &notes, &failed, [&](GError** e) { arv_camera_set_gain(camera_, *s.gain_db, e); }, "GainRaw");
     if (s.frame_rate_hz) {
       feature("AcquisitionFrameRate", &notes, &failed,
-              [&](GError** e) { arv_camera_set_frame_rate(camera_, *s.frame_rate_hz, e); });
+              [&](GError** e) { arv_camera_set_frame_rate(camera_, *s.frame_rate_hz, e); }, "AcquisitionFrameRateAbs");
     }
     if (s.trigger_source) {
       feature("TriggerMode", &notes, &failed, [&](GError** e) { arv_camera_set_string(camera_, "TriggerMode", "On", e); });
@@ -223,6 +233,13 @@ HostResult<std::unique_ptr<Camera>> open_aravis_camera(const std::string& id) {
     if (!device) return host_error(HostErrorKind::kOpenFailed, name, "no GigE Vision camera answers: " + take_message(e));
     camera = arv_camera_new_with_device(device, &e);
     g_object_unref(device);
+    if (camera) {
+      // The largest packet the path carries (the camera sends test packets): fewer
+      // packets per frame, fewer frames lost to one lost packet.
+      GError* size_error = nullptr;
+      arv_camera_gv_auto_packet_size(camera, &size_error);
+      if (size_error) g_error_free(size_error);
+    }
   } else {
     camera = arv_camera_new(id.c_str(), &e);
   }
