@@ -20,6 +20,9 @@ void add_live_options(CLI::App* cmd, LiveArgs* a) {
   cmd->add_option("--strobe-output", a->strobe_output, "Camera output line to drive with LineSource ExposureActive (e.g. Line1)");
   cmd->add_option("--sync-strobe", a->sync_strobe,
                   "Host GPIO line CHIP:LINE wired to the strobe: be the sync master, stamp exposures from its edges");
+  cmd->add_flag("--camera-clock-is-rig-time", a->camera_clock_is_rig,
+                "The camera's timestamps are rig time already (PTP-synchronised to the sync master, or a simulated camera)");
+  cmd->add_option("--packet-size", a->packet_size, "GigE Vision GevSCPSPacketSize (bytes; needs jumbo frames above 1500)");
   cmd->add_option("--frames", a->frames, "Stop after N frames (0: until SIGINT)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--queue", a->queue, "Frames buffered between capture and output (older ones dropped, counted)")
       ->check(CLI::Range(1, 1024))
@@ -32,6 +35,7 @@ void add_live_options(CLI::App* cmd, LiveArgs* a) {
 static host::ExposureMatcher::Options matcher_options(const LiveArgs& a) {
   host::ExposureMatcher::Options o;
   o.exposure_ns = static_cast<int64_t>(std::llround(a.exposure_us * 1000.0));
+  o.camera_clock_is_rig = a.camera_clock_is_rig;
   if (a.frame_rate_hz && *a.frame_rate_hz > 0) o.frame_period_ns = static_cast<int64_t>(std::llround(1e9 / *a.frame_rate_hz));
   return o;
 }
@@ -47,6 +51,7 @@ tl::expected<std::unique_ptr<LiveCapture>, std::string> LiveCapture::open(
   s.pixel_format = args.pixel_format;
   if (!args.trigger_source.empty()) s.trigger_source = args.trigger_source;
   if (!args.strobe_output.empty()) s.strobe_line = args.strobe_output;
+  s.packet_size = args.packet_size;
   s.width = width;
   s.height = height;
   auto notes = (*camera)->configure(s);
@@ -110,7 +115,17 @@ void LiveCapture::capture_loop() {
     if (!live.frame.bad) {
       auto stamp = matcher_.match(live.frame.arrived_ns, live.frame.camera_ns);
       if (!stamp) live.frame.bad = camera_->name() + ": frame " + std::to_string(live.frame.sequence) + ": no exposure matches it";
-      else live.stamp = *stamp;
+      else {
+        live.stamp = *stamp;
+        const int64_t end = stamp->exposure.timestamp_ns + stamp->exposure.exposure_ns;
+        if (args_.camera_clock_is_rig && !matcher_.synchronised()) {
+          const int64_t d = live.frame.arrived_ns - end;
+          if (!host_minus_rig_ns_ || d < *host_minus_rig_ns_) host_minus_rig_ns_ = d;
+          live.exposure_end_host_ns = end + *host_minus_rig_ns_;
+        } else {
+          live.exposure_end_host_ns = end;
+        }
+      }
     }
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -153,7 +168,8 @@ LiveStats LiveCapture::stats() const {
     s.bad_buffers = counters_.bad_buffers;
   }
   s.match = matcher_.counters();
-  s.estimated = !matcher_.synchronised();
+  s.synchronised = matcher_.synchronised();
+  s.estimated = !s.synchronised && !args_.camera_clock_is_rig;
   return s;
 }
 
@@ -163,6 +179,11 @@ int64_t LatencyStats::percentile(double p) const {
   std::sort(sorted.begin(), sorted.end());
   const size_t rank = static_cast<size_t>(std::ceil(p / 100.0 * static_cast<double>(sorted.size())));
   return sorted[std::min(sorted.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
+const char* stamp_source(const LiveStats& s) {
+  if (s.synchronised) return "sync master (strobe)";
+  return s.estimated ? "camera clock + estimated offset (no sync wiring)" : "camera clock (rig time)";
 }
 
 std::string LatencyStats::summary() const {

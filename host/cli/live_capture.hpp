@@ -38,6 +38,9 @@ struct LiveArgs {
   int64_t frames = 0;            // stop after this many frames (0: until stopped)
   int queue = 4;                 // frames between capture and consumer
   int frame_timeout_ms = 5000;   // no frame for this long ends the run
+  bool camera_clock_is_rig = false;  // the camera's timestamps are rig time (PTP)
+  std::optional<int> packet_size;    // GigE Vision packet size (bytes)
+  std::string record;            // localize: also write the frames as a rig dataset here
 };
 // --camera, --exposure-us, --gain-db, --frame-rate, --pixel-format, --trigger-source,
 // --strobe-output, --sync-strobe, --frames, --queue.
@@ -46,6 +49,10 @@ void add_live_options(CLI::App* cmd, LiveArgs* args);
 struct LiveFrame {
   host::CameraFrame frame;
   host::MatchedStamp stamp;  // rig time exposure (valid unless frame.bad)
+  // The end of the exposure on the host's CLOCK_MONOTONIC, for latency: rig time is
+  // CLOCK_MONOTONIC, except when the camera clock is taken as rig time (then mapped by
+  // the fastest transfer seen).
+  int64_t exposure_end_host_ns = 0;
 };
 
 struct LiveStats {
@@ -53,7 +60,8 @@ struct LiveStats {
   uint64_t bad_buffers = 0;   // incomplete or wrong-sized
   uint64_t queue_drops = 0;   // dropped because the consumer fell behind
   host::MatchCounters match;
-  bool estimated = false;     // stamps from the camera clock (no sync wiring)
+  bool estimated = false;     // stamps from the camera clock and an estimated offset
+  bool synchronised = false;  // stamps from the sync master
 };
 
 class LiveCapture {
@@ -86,11 +94,15 @@ class LiveCapture {
   bool ended_ = false;
   std::optional<std::string> error_;
   uint64_t drops_ = 0;
+  std::optional<int64_t> host_minus_rig_ns_;
   host::CameraCounters counters_;
   int64_t handed_out_ = 0;
   std::thread sync_thread_;
   std::thread capture_thread_;
 };
+
+// How the frames were stamped, for summaries.
+const char* stamp_source(const LiveStats& s);
 
 // Latency from exposure end to pose out (ns), p50/p99 in a summary line.
 class LatencyStats {

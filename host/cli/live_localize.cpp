@@ -3,6 +3,8 @@
 
 #include <cstdio>
 
+#include "tetrapulse/localizer/rig_dataset.hpp"
+
 #include "tetrapulse/host/rig_clock.hpp"
 
 namespace tetrapulse::cli {
@@ -12,8 +14,12 @@ constexpr uint64_t kNamedBadFrames = 5;
 
 class LiveFrameSource final : public FrameSource {
  public:
-  LiveFrameSource(std::unique_ptr<LiveCapture> live, const std::atomic<bool>& stop) : live_(std::move(live)), stop_(stop) {}
+  LiveFrameSource(std::unique_ptr<LiveCapture> live, const std::atomic<bool>& stop, std::optional<RigDatasetWriter> record)
+      : live_(std::move(live)), stop_(stop), record_(std::move(record)) {}
   ~LiveFrameSource() override {
+    if (record_) {
+      if (auto r = record_->finish(); !r) std::fprintf(stderr, "tetrapulse localize: %s\n", r.error().what().c_str());
+    }
     const LiveStats s = live_->stats();
     std::fprintf(stderr,
                  "tetrapulse localize: %s; %llu buffers, %llu bad, %llu dropped by the queue, %llu exposures without a "
@@ -21,7 +27,7 @@ class LiveFrameSource final : public FrameSource {
                  latency_.summary().c_str(), static_cast<unsigned long long>(s.grabbed),
                  static_cast<unsigned long long>(s.bad_buffers), static_cast<unsigned long long>(s.queue_drops),
                  static_cast<unsigned long long>(s.match.dropped), static_cast<unsigned long long>(s.match.unmatched_frames),
-                 s.estimated ? "camera clock + estimated offset (no sync wiring)" : "sync master (strobe)");
+                 stamp_source(s));
     if (live_->error()) std::fprintf(stderr, "tetrapulse localize: %s\n", live_->error()->c_str());
   }
 
@@ -46,7 +52,10 @@ class LiveFrameSource final : public FrameSource {
     out.exposure_ns = f->stamp.exposure.exposure_ns;
     out.name = live_->camera_name() + " frame " + std::to_string(f->frame.sequence);
     out.image = std::move(f->frame.image);
-    previous_end_ns_ = out.timestamp_ns + out.exposure_ns;
+    if (record_) {
+      if (auto r = record_->add_frame(out.frame, out.timestamp_ns, out.exposure_ns, out.image); !r) return tl::unexpected(r.error());
+    }
+    previous_end_ns_ = f->exposure_end_host_ns;
     return std::optional<Frame>(std::move(out));
   }
   std::optional<size_t> count() const override { return std::nullopt; }
@@ -54,6 +63,7 @@ class LiveFrameSource final : public FrameSource {
  private:
   std::unique_ptr<LiveCapture> live_;
   const std::atomic<bool>& stop_;
+  std::optional<RigDatasetWriter> record_;
   LatencyStats latency_;
   std::optional<int64_t> previous_end_ns_;
   uint64_t bad_named_ = 0;
@@ -66,11 +76,18 @@ bool is_live_camera_spec(const std::string& spec) {
 }
 
 tl::expected<std::unique_ptr<FrameSource>, std::string> live_frame_source(const LiveArgs& args, const CameraInfo& camera,
+                                                                          const TargetsFile& targets,
                                                                           const std::atomic<bool>& stop) {
   auto live = LiveCapture::open(args, camera.width, camera.height,
                                 [](const std::string& n) { std::fprintf(stderr, "tetrapulse localize: %s\n", n.c_str()); });
   if (!live) return tl::unexpected(live.error());
-  return std::unique_ptr<FrameSource>(new LiveFrameSource(std::move(*live), stop));
+  std::optional<RigDatasetWriter> record;
+  if (!args.record.empty()) {
+    auto w = RigDatasetWriter::create(args.record, camera, targets);
+    if (!w) return tl::unexpected(w.error().what());
+    record = std::move(*w);
+  }
+  return std::unique_ptr<FrameSource>(new LiveFrameSource(std::move(*live), stop, std::move(record)));
 }
 
 }  // namespace tetrapulse::cli

@@ -4,7 +4,8 @@
 // stamps, bounded queue). Latency exposure end -> pose out is taken for each frame
 // when the localizer asks for the next one (its poses are out by then); the summary
 // (p50/p99, buffers, drops, mismatches, how frames were stamped) goes to stderr when
-// the source is destroyed.
+// the source is destroyed. With args.record the frames are written as a rig
+// dataset too (each before it is localized).
 #include <memory>
 #include <string>
 
@@ -17,6 +18,7 @@ namespace tetrapulse::cli {
 bool is_live_camera_spec(const std::string& spec);
 
 tl::expected<std::unique_ptr<FrameSource>, std::string> live_frame_source(const LiveArgs& args, const CameraInfo& camera,
+                                                                          const TargetsFile& targets,
                                                                           const std::atomic<bool>& stop);
 
 }  // namespace tetrapulse::cli

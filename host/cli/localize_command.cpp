@@ -100,7 +100,7 @@ int run_localize(const LocalizeArgs& a) {
   } else if (is_live_camera_spec(a.camera)) {
     LiveArgs live_args = a.live;
     live_args.camera = a.camera;
-    auto s = live_frame_source(live_args, camera, stop_on_signals());
+    auto s = live_frame_source(live_args, camera, targets, stop_on_signals());
     if (!s) return fail(kExitNoDevice, s.error());
     source = std::move(*s);
   } else {
@@ -223,6 +223,7 @@ void add_localize_command(CLI::App& app, int* result) {
   cmd->add_flag("--quiet", args->quiet, "No progress bar or summary");
   add_ros2_options(cmd, &args->ros2);
   add_live_options(cmd, &args->live);
+  cmd->add_option("--record", args->live.record, "With --camera aravis:|v4l2:, also record the frames as a rig dataset");
   cmd->footer("Dataset format and poses.csv: spec/rig-dataset.md.");
   cmd->callback([args, result] { *result = run_localize(*args); });
 }

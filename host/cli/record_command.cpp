@@ -92,7 +92,7 @@ int run_record(RecordArgs a) {
                  static_cast<unsigned long long>(s.grabbed), static_cast<unsigned long long>(s.bad_buffers),
                  static_cast<unsigned long long>(s.queue_drops), static_cast<unsigned long long>(s.match.dropped),
                  static_cast<unsigned long long>(s.match.unmatched_frames), static_cast<unsigned long long>(skipped),
-                 s.estimated ? "camera clock + estimated offset (no sync wiring)" : "sync master (strobe)");
+                 stamp_source(s));
   }
   if (error && !stopped && (a.live.frames == 0 || written < a.live.frames)) return fail(kExitDeviceError, *error);
   return skipped > 0 ? kExitSkipped : kExitOk;

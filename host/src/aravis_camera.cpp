@@ -233,13 +233,7 @@ HostResult<std::unique_ptr<Camera>> open_aravis_camera(const std::string& id) {
     if (!device) return host_error(HostErrorKind::kOpenFailed, name, "no GigE Vision camera answers: " + take_message(e));
     camera = arv_camera_new_with_device(device, &e);
     g_object_unref(device);
-    if (camera) {
-      // The largest packet the path carries (the camera sends test packets): fewer
-      // packets per frame, fewer frames lost to one lost packet.
-      GError* size_error = nullptr;
-      arv_camera_gv_auto_packet_size(camera, &size_error);
-      if (size_error) g_error_free(size_error);
-    }
+
   } else {
     camera = arv_camera_new(id.c_str(), &e);
   }

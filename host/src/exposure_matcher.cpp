@@ -13,7 +13,7 @@ void ExposureMatcher::add_exposure(const Exposure& e) {
 std::optional<MatchedStamp> ExposureMatcher::match(int64_t arrived_ns, int64_t camera_ns) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (!sync_) {
-    const int64_t offset = arrived_ns - (camera_ns + options_.exposure_ns);
+    const int64_t offset = options_.camera_clock_is_rig ? 0 : arrived_ns - (camera_ns + options_.exposure_ns);
     if (!offset_ns_ || offset < *offset_ns_) offset_ns_ = offset;
     if (!first_camera_ns_) first_camera_ns_ = camera_ns;
     int64_t frame = counted_++;
@@ -24,7 +24,7 @@ std::optional<MatchedStamp> ExposureMatcher::match(int64_t arrived_ns, int64_t c
     }
     last_frame_ = frame;
     ++counters_.matched;
-    return MatchedStamp{Exposure{frame, camera_ns + *offset_ns_, options_.exposure_ns}, true};
+    return MatchedStamp{Exposure{frame, camera_ns + *offset_ns_, options_.exposure_ns}, !options_.camera_clock_is_rig};
   }
   // The latest exposure that ended at or before the arrival, within max_delay_ns.
   std::optional<size_t> best;

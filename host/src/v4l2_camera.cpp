@@ -86,6 +86,7 @@ class V4l2Camera final : public Camera {
       parm.parm.capture.timeperframe.denominator = static_cast<uint32_t>(std::lround(*s.frame_rate_hz * 1000));
       if (xioctl(fd_, VIDIOC_S_PARM, &parm) < 0) notes.push_back(name() + ": device does not set its frame rate");
     }
+    if (s.packet_size) notes.push_back(name() + ": V4L2 has no feature GevSCPSPacketSize");
     if (s.trigger_source) notes.push_back(name() + ": V4L2 has no feature TriggerSource (free-running)");
     if (s.strobe_line) notes.push_back(name() + ": V4L2 has no feature LineSource (no strobe output)");
     format_ = fmt.fmt.pix;

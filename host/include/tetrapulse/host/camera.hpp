@@ -29,6 +29,7 @@ struct CameraSettings {
   std::optional<std::string> trigger_source;  // TriggerMode=On, TriggerSource=this ("Line0")
   std::optional<std::string> strobe_line;     // LineSelector=this, LineSource=ExposureActive ("Line1")
   std::optional<int> width, height;        // image size (pixels)
+  std::optional<int> packet_size;          // GigE Vision: GevSCPSPacketSize (bytes; jumbo frames: fewer packets to lose)
 };
 
 struct CameraFrame {

@@ -41,6 +41,9 @@ class ExposureMatcher {
     int64_t max_delay_ns = 50'000'000;   // exposure end -> frame arrival
     int64_t exposure_ns = 2'000'000;     // for camera-clock mode: the exposure set
     int64_t frame_period_ns = 0;         // camera-clock mode: > 0 numbers frames by time
+    // Camera-clock mode: the camera's clock already is rig time (IEEE 1588 PTP with the
+    // sync master, or a simulated camera): offset 0, stamps not estimated.
+    bool camera_clock_is_rig = false;
   };
   // sync: exposures will come from add_exposure(); else the camera clock is used.
   ExposureMatcher(bool sync, Options options) : sync_(sync), options_(options) {}
