@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 
 #include "tetrapulse/host/rig_clock.hpp"
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "live_capture.hpp"
-#include "tetrapulse/localizer/frame_source.hpp"
+#include "tetrapulse/datasets/frame_source.hpp"
 
 namespace tetrapulse::cli {
 

@@ -13,8 +13,8 @@
 #include "live_capture.hpp"
 #include "stop_signal.hpp"
 #include "vision_commands.hpp"
-#include "tetrapulse/localizer/dataset_io.hpp"
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/dataset_io.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 
 namespace tetrapulse::cli {
 namespace {

@@ -14,10 +14,14 @@ cd "$work"
 "$fake" sim "$lost" 240 > fake.log & camera=$!
 trap 'kill $camera 2>/dev/null || true' EXIT
 for _ in $(seq 100); do grep -q serving fake.log && break; sleep 0.1; done
+# Exit 1 (nothing identified) is allowed only where no pose is required: with 1 % loss
+# the frames that arrive are ~14 frame periods apart, and whether codes read from so
+# few is chance.
+live=0
 timeout 200 "$vision" localize --camera aravis:127.0.0.1 --frames "$frames" --camera-info sim/camera.yaml \
   --targets sim/targets.yaml --camera-clock-is-rig-time --frame-rate 100 --exposure-us 2000 --queue 1024 \
-  --record rec --out live.csv
-# Exit 1 offline (nothing identified) is allowed only where no pose is required.
+  --record rec --out live.csv || live=$?
+[ $live -eq 0 ] || { [ $live -eq 1 ] && [ "$min_poses" -eq 0 ]; }
 off=0
 "$vision" localize rec --out offline.csv --quiet || off=$?
 [ $off -eq 0 ] || { [ $off -eq 1 ] && [ "$min_poses" -eq 0 ]; }

@@ -15,7 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "tetrapulse/localizer/rig_dataset.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 
 namespace {
 
