@@ -19,5 +19,6 @@ void add_identify_command(CLI::App& app, int* result);
 void add_status_command(CLI::App& app, int* result);
 void add_flash_command(CLI::App& app, int* result);
 void add_sync_command(CLI::App& app, int* result);
+void add_record_command(CLI::App& app, int* result);
 
 }  // namespace tetrapulse::cli

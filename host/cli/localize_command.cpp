@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "exit_codes.hpp"
+#include "live_localize.hpp"
 #include "vision_commands.hpp"
 #include "progress_bar.hpp"
 #include "ros2_output.hpp"
@@ -39,6 +40,7 @@ struct LocalizeArgs {
   std::string targets;
   bool quiet = false;
   Ros2Args ros2;
+  LiveArgs live;  // --camera aravis:ID | v4l2:DEV (live_localize.hpp)
 };
 
 int fail(int code, const std::string& message) {
@@ -94,6 +96,12 @@ int run_localize(const LocalizeArgs& a) {
   } else if (!a.video.empty()) {
     auto s = video_frames(a.video, a.timestamps, camera);
     if (!s) return fail(kExitBadInput, s.error().what());
+    source = std::move(*s);
+  } else if (is_live_camera_spec(a.camera)) {
+    LiveArgs live_args = a.live;
+    live_args.camera = a.camera;
+    auto s = live_frame_source(live_args, camera, targets, stop_on_signals());
+    if (!s) return fail(kExitNoDevice, s.error());
     source = std::move(*s);
   } else {
     auto s = camera_frames(a.camera, camera, a.exposure_ns);
@@ -206,7 +214,7 @@ void add_localize_command(CLI::App& app, int* result) {
       ->capture_default_str();
   cmd->add_option("--video", args->video, "A recorded video (frames in order of --timestamps)");
   cmd->add_option("--timestamps", args->timestamps, "CSV frame,timestamp_ns,exposure_ns for --video");
-  cmd->add_option("--camera", args->camera, "A live V4L2 camera, e.g. /dev/video0: prints poses as they come");
+  cmd->add_option("--camera", args->camera, "A live camera: aravis:ID (IP address or device id), v4l2:/dev/videoN, or /dev/videoN through OpenCV; prints poses as they come");
   cmd->add_option("--exposure-ns", args->exposure_ns, "Exposure of the live camera (ns)")
       ->check(CLI::Range(int64_t{1}, int64_t{10'000'000'000}))
       ->capture_default_str();
@@ -214,6 +222,8 @@ void add_localize_command(CLI::App& app, int* result) {
   cmd->add_option("--targets", args->targets, "targets.yaml to use (default: DATASET/targets.yaml)");
   cmd->add_flag("--quiet", args->quiet, "No progress bar or summary");
   add_ros2_options(cmd, &args->ros2);
+  add_live_options(cmd, &args->live);
+  cmd->add_option("--record", args->live.record, "With --camera aravis:|v4l2:, also record the frames as a rig dataset");
   cmd->footer("Dataset format and poses.csv: spec/rig-dataset.md.");
   cmd->callback([args, result] { *result = run_localize(*args); });
 }

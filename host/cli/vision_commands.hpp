@@ -18,6 +18,7 @@ inline constexpr VisionCommand kVisionCommands[] = {
     {"localize", "Identified 6D poses of the targets from images (poses.csv)"},
     {"eval", "Compare a poses file with its dataset's ground truth"},
     {"demo", "The virtual rig end to end: simulate, localize, evaluate, plot"},
+    {"record", "A rig dataset from a live camera (Aravis or V4L2), stamped in rig time"},
 };
 
 // The summary of vision command `name` (nullptr: not one).

@@ -15,5 +15,6 @@ int main(int argc, char** argv) {
   add_localize_command(app, &result);
   add_eval_command(app, &result);
   add_demo_command(app, &result);
+  add_record_command(app, &result);
   return run_app(app, argc, argv, result);
 }
