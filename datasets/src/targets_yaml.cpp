@@ -1,4 +1,4 @@
-// targets.yaml (spec/rig-dataset.md): time base, modulation, targets with four markers each.
+// targets.yaml (docs/rig-dataset.md): time base, modulation, targets with four markers each.
 #include <cmath>
 #include <set>
 

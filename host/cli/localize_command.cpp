@@ -214,7 +214,7 @@ void add_localize_command(CLI::App& app, int* result) {
   cmd->add_option("--targets", args->targets, "targets.yaml to use (default: DATASET/targets.yaml)");
   cmd->add_flag("--quiet", args->quiet, "No progress bar or summary");
   add_ros2_options(cmd, &args->ros2);
-  cmd->footer("Dataset format and poses.csv: spec/rig-dataset.md.");
+  cmd->footer("Dataset format and poses.csv: docs/rig-dataset.md.");
   cmd->callback([args, result] { *result = run_localize(*args); });
 }
 

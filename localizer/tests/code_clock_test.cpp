@@ -1,4 +1,4 @@
-// The contract's bit timing (spec/rig-dataset.md) and how codes explain a
+// The contract's bit timing (docs/rig-dataset.md) and how codes explain a
 // track's read bits: exposures inside one bit, across edges, free-running phases.
 #include "tetrapulse/localizer/code_clock.hpp"
 
