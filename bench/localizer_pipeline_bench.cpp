@@ -77,7 +77,7 @@ TargetsFile with_absent_target() {
   TargetsFile targets = sequence().scenario.targets;
   Target absent = targets.targets[0];
   absent.id = 99;
-  for (Marker& m : absent.markers) m.code = Code::parse("000111010110", nullptr);
+  for (Marker& m : absent.markers) m.code = parse_code("000111010110", nullptr);
   targets.targets.push_back(absent);
   return targets;
 }

@@ -1,4 +1,4 @@
-// camera.yaml: the ROS camera_info YAML layout (spec/rig-dataset.md).
+// camera.yaml: the ROS camera_info YAML layout (docs/rig-dataset.md).
 #include <cmath>
 
 #include <fmt/format.h>

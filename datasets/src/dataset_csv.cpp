@@ -1,4 +1,4 @@
-// frames.csv, groundtruth.csv and poses.csv (spec/rig-dataset.md).
+// frames.csv, groundtruth.csv and poses.csv (docs/rig-dataset.md).
 #include <algorithm>
 #include <cmath>
 #include <functional>

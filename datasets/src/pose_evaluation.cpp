@@ -83,7 +83,7 @@ DatasetResult<Evaluation> evaluate_poses(const RigDataset& dataset, const std::v
     uint32_t length = 1;
     for (const Target& t : tf.targets)
       for (const Marker& m : t.markers)
-        if (m.code) length = std::max(length, m.code->length);
+        if (m.code) length = std::max<uint32_t>(length, m.code->length);
     const auto& frames = dataset.frames();
     int64_t period = tf.timebase.bit_period_ns;
     if (frames.size() >= 2) {

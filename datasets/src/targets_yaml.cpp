@@ -1,4 +1,4 @@
-// targets.yaml (spec/rig-dataset.md): time base, modulation, targets with four markers each.
+// targets.yaml (docs/rig-dataset.md): time base, modulation, targets with four markers each.
 #include <cmath>
 #include <set>
 
@@ -32,7 +32,7 @@ void read_marker(Fields& f, const YAML::Node& m, const std::string& path, Marker
     const std::string text = f.scalar<std::string>(code, path + ".code", "a string of 0 and 1");
     if (f.failed()) return;
     std::string why;
-    out->code = Code::parse(text, &why);
+    out->code = parse_code(text, &why);
     if (!out->code) f.fail(code, fmt::format("{}.code: '{}' {}", path, text, why));
   }
 }
@@ -60,13 +60,7 @@ DatasetResult<TargetsFile> parse_targets_yaml(const std::string& text, const std
   YAML::Node mod = f.child(*doc, "modulation", "");
   const std::string kind = f.scalar<std::string>(f.child(mod, "kind", "modulation"), "modulation.kind", "a string");
   if (!f.failed()) {
-    if (kind == "on_off") {
-      out.modulation.kind = ModulationKind::kOnOff;
-    } else if (kind == "two_level") {
-      out.modulation.kind = ModulationKind::kTwoLevel;
-    } else if (kind == "constant") {
-      out.modulation.kind = ModulationKind::kConstant;
-    } else {
+    if (!protocol::modulation_from_name(kind.c_str(), &out.modulation.kind)) {
       f.fail(mod["kind"], fmt::format("modulation.kind: '{}' is not on_off, two_level or constant", kind));
     }
   }
@@ -123,7 +117,7 @@ std::string format_targets_yaml(const TargetsFile& t) {
   std::string out;
   out += fmt::format("timebase:\n  synchronized: {}\n  epoch_ns: {}\n  bit_period_ns: {}\n",
                      t.timebase.synchronized ? "true" : "false", t.timebase.epoch_ns, t.timebase.bit_period_ns);
-  out += fmt::format("modulation:\n  kind: {}\n", modulation_kind_name(t.modulation.kind));
+  out += fmt::format("modulation:\n  kind: {}\n", protocol::modulation_name(t.modulation.kind));
   if (t.modulation.kind == ModulationKind::kTwoLevel) out += fmt::format("  low: {}\n", t.modulation.low);
   out += "targets:\n";
   for (const Target& target : t.targets) {
@@ -131,7 +125,7 @@ std::string format_targets_yaml(const TargetsFile& t) {
                        yaml_fields::quoted(target.name), target.marker_diameter_m);
     for (const Marker& m : target.markers) {
       out += fmt::format("      - position_m: [{}, {}, {}]\n", m.position_m.x(), m.position_m.y(), m.position_m.z());
-      if (m.code) out += fmt::format("        code: \"{}\"\n", m.code->str());
+      if (m.code) out += fmt::format("        code: \"{}\"\n", code_text(*m.code));
     }
   }
   return out;

@@ -80,7 +80,7 @@ TEST(TargetsYaml, ReadsTheContractExample) {
   EXPECT_EQ(t->modulation.kind, ModulationKind::kTwoLevel);
   EXPECT_DOUBLE_EQ(t->modulation.low, 0.3);
   ASSERT_EQ(t->targets.size(), 1u);
-  EXPECT_EQ(t->targets[0].markers[0].code->str(), "1101001110");
+  EXPECT_EQ(code_text(*t->targets[0].markers[0].code), "1101001110");
   EXPECT_FALSE(t->targets[0].markers[3].code.has_value());
   EXPECT_DOUBLE_EQ(t->targets[0].markers[2].position_m.x(), 0.0626);
 }

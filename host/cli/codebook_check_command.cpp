@@ -39,7 +39,7 @@ struct CheckArgs {
 // One fault in the user's words: which codes, what was measured, which option bounds it.
 std::string fault_text(const CodebookReport& r, const CodebookSpec& spec, const std::vector<std::string>& labels,
                        const std::vector<uint64_t>& codes) {
-  const std::string who = fmt::format("{} '{}'", labels[r.code], Code{codes[r.code], spec.length}.str());
+  const std::string who = fmt::format("{} '{}'", labels[r.code], code_text(Code{spec.length, codes[r.code]}));
   switch (r.fault) {
     case CodebookFault::kWeightTooLow:
       return fmt::format("{}: {} ones, fewer than {} (--weights)", who, r.value, r.limit);
@@ -55,7 +55,7 @@ std::string fault_text(const CodebookReport& r, const CodebookSpec& spec, const 
           "free-running reader cannot tell its phase (--distance)",
           who, r.shift, r.value, r.limit);
     case CodebookFault::kTooClose: {
-      const std::string other = fmt::format("{} '{}'", labels[r.other], Code{codes[r.other], spec.length}.str());
+      const std::string other = fmt::format("{} '{}'", labels[r.other], code_text(Code{spec.length, codes[r.other]}));
       if (spec.timing == CodeTiming::kFreeRunning) {
         return fmt::format("{} and {} are at distance {} under shift {}, fewer than {} (--distance)", who, other,
                            r.value, r.shift, r.limit);
@@ -174,7 +174,7 @@ int run_check(const CheckArgs& a) {
       const Code& code = *t.markers[k].code;
       LabelledCode c{code, per_target ? fmt::format("targets[{}] (id {})", i, t.id)
                                       : fmt::format("targets[{}] (id {}) marker {}", i, t.id, k)};
-      (protocol::is_square_wave(code.bits, code.length, nullptr) ? frequency : binary).push_back(std::move(c));
+      (protocol::is_square_wave(code) ? frequency : binary).push_back(std::move(c));
     }
   }
   if (binary.size() > 0xFFFF || frequency.size() > 0xFFFF) {

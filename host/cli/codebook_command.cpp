@@ -255,7 +255,7 @@ int run_generate(const GenerateArgs& a) {
     if (shapes.size() != targets) t.name = fmt::format("{}-{}", t.name.empty() ? "target" : t.name, t.id);
     for (size_t k = 0; k < kMarkers; ++k) {
       const size_t j = per_marker ? kMarkers * i + k : i;
-      t.markers[k].code = frequency ? frequency->codes[j] : Code{codes[j], spec->length};
+      t.markers[k].code = frequency ? frequency->codes[j] : Code{spec->length, codes[j]};
     }
     out.targets.push_back(std::move(t));
   }

@@ -21,7 +21,7 @@ constexpr double kQ32 = 4294967296.0;
 constexpr size_t kShown = 20;
 constexpr uint32_t kDarkCap = 64;  // dark runs are reported up to this many frames
 
-std::string named(const LabelledCode& c) { return fmt::format("{} '{}'", c.label, c.code.str()); }
+std::string named(const LabelledCode& c) { return fmt::format("{} '{}'", c.label, code_text(c.code)); }
 
 // nu and drift (Q32) of a signal that repeats every `bits` bits.
 struct Seen {
@@ -50,7 +50,7 @@ std::string fault_text(const FrequencySpec& s, const FrequencyReport& r, const L
                        const LabelledCode* other) {
   const std::string who = named(c);
   protocol::SquareWave wave;
-  protocol::is_square_wave(c.code.bits, c.code.length, &wave);
+  protocol::is_square_wave(c.code, &wave);
   switch (r.fault) {
     case FrequencyFault::kNearConstant:
       return fmt::format("{}: seen at {}, within 1/{} of 0: it looks constant (--window-frames, or another length)",

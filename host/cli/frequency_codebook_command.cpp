@@ -133,7 +133,7 @@ tl::expected<FrequencyChoice, FrequencyCodebookError> choose_frequency_codebook(
   FrequencyChoice choice;
   choice.bit_period_ns = book.bit_period_ns;
   for (uint32_t i = 0; i < book.count; ++i) {
-    choice.codes.push_back(Code{book.codes[i].word, book.codes[i].wave.length});
+    choice.codes.push_back(Code{book.codes[i].wave.length, book.codes[i].word});
   }
   choice.description = fmt::format(
       "frequency codes, bit period {} ns, {}; margin {:.4f} cycle per frame (identified within ~{:.0f} frames); "

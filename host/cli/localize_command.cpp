@@ -224,7 +224,7 @@ void add_localize_command(CLI::App& app, int* result) {
   add_ros2_options(cmd, &args->ros2);
   add_live_options(cmd, &args->live);
   cmd->add_option("--record", args->live.record, "With --camera aravis:|v4l2:, also record the frames as a rig dataset");
-  cmd->footer("Dataset format and poses.csv: spec/rig-dataset.md.");
+  cmd->footer("Dataset format and poses.csv: docs/rig-dataset.md.");
   cmd->callback([args, result] { *result = run_localize(*args); });
 }
 

@@ -113,7 +113,7 @@ void add_sim_command(CLI::App& app, int* result) {
                 "code over simulated links, as on a real rig (the dataset is the same)");
   cmd->add_flag("--list", args->list, "List the built-in scenarios");
   cmd->add_option("--print", args->print, "Print a built-in scenario's YAML (a starting point for your own)");
-  cmd->footer("Scenario format: sim/SCENARIOS.md. Dataset format: spec/rig-dataset.md.");
+  cmd->footer("Scenario format: sim/SCENARIOS.md. Dataset format: docs/rig-dataset.md.");
   cmd->callback([args, result] { *result = run_sim(*args); });
 }
 

@@ -9,15 +9,6 @@ using protocol::GpioEdgeNumbering;
 using protocol::Modulation;
 using protocol::SyncSource;
 
-const char* modulation_name(Modulation m) {
-  switch (m) {
-    case Modulation::kOnOff: return "on_off";
-    case Modulation::kTwoLevel: return "two_level";
-    case Modulation::kConstant: return "constant";
-  }
-  return "unknown";
-}
-
 const char* sync_source_name(SyncSource s) {
   switch (s) {
     case SyncSource::kNone: return "none";
@@ -46,36 +37,20 @@ std::optional<E> by_name(const std::string& text, int count, Name name) {
 
 }  // namespace
 
-std::optional<Modulation> parse_modulation(const std::string& t) { return by_name<Modulation>(t, 3, modulation_name); }
+std::optional<Modulation> parse_modulation(const std::string& t) {
+  Modulation m = Modulation::kOnOff;
+  if (!protocol::modulation_from_name(t.c_str(), &m)) return std::nullopt;
+  return m;
+}
 std::optional<SyncSource> parse_sync_source(const std::string& t) { return by_name<SyncSource>(t, 3, sync_source_name); }
 std::optional<GpioEdge> parse_gpio_edge(const std::string& t) { return by_name<GpioEdge>(t, 2, gpio_edge_name); }
 std::optional<GpioEdgeNumbering> parse_gpio_edge_numbering(const std::string& t) {
   return by_name<GpioEdgeNumbering>(t, 2, gpio_edge_numbering_name);
 }
 
-std::string code_text(const protocol::Code& code) {
-  std::string s(code.length, '0');
-  for (uint32_t i = 0; i < code.length; ++i) s[i] = code.bit(i) ? '1' : '0';
-  return s;
-}
-
 std::optional<protocol::Code> parse_code(const std::string& text, std::string* why) {
   if (text.empty() || text == "-") return protocol::Code{};
-  if (text.size() > protocol::kMaxCodeLength) {
-    if (why != nullptr) *why = fmt::format("has {} bits; a board plays at most {}", text.size(), protocol::kMaxCodeLength);
-    return std::nullopt;
-  }
-  protocol::Code c;
-  c.length = static_cast<uint8_t>(text.size());
-  for (size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '1') {
-      c.bits |= uint64_t{1} << i;
-    } else if (text[i] != '0') {
-      if (why != nullptr) *why = fmt::format("character {} is '{}', not 0 or 1", i + 1, text[i]);
-      return std::nullopt;
-    }
-  }
-  return c;
+  return tetrapulse::parse_code(text, why);
 }
 
 }  // namespace tetrapulse::host

@@ -7,22 +7,12 @@
 #include "tetrapulse/host/sim_board_link.hpp"
 #include "tetrapulse/host/sim_can_bus.hpp"
 #include "tetrapulse/host/sim_sync_line.hpp"
-#include "tetrapulse/host/target_board_config.hpp"
 
 namespace tetrapulse::host {
 namespace {
 
 constexpr int64_t kMs = 1'000'000;
 constexpr int64_t kSecond = 1'000'000'000;
-
-protocol::SyncSource sync_source(sim::BoardSync sync) {
-  switch (sync) {
-    case sim::BoardSync::kGpio: return protocol::SyncSource::kGpio;
-    case sim::BoardSync::kCan: return protocol::SyncSource::kCan;
-    case sim::BoardSync::kNone: break;
-  }
-  return protocol::SyncSource::kNone;
-}
 
 // Whether the board hears its sync at rig time t (not during its sync loss).
 std::function<bool(int64_t)> connected(const sim::TimeIntervals& sync_loss) {
@@ -72,15 +62,9 @@ HostResult<void> HostSyncedRig::set_up(const sim::Scenario& scenario, const sim:
         std::make_unique<SimLink>(fmt::format("sim:{}", sim->options().node_id), sim_board_port(sim)));
 
     // What `tetrapulse config --file boards/target-N.yaml` would give this board.
-    protocol::Config config = target_board_config(targets, i, sync_source(clock.sync));
-    config.epoch_ns = sim::firmware_board_epoch_ns(scenario, i, power_on);
-    if (clock.sync == sim::BoardSync::kGpio) {
-      // Pulse k of the trigger is frame k's exposure start; edges are numbered from the
-      // coarse time the host sends, so missed ones (sync loss) do not shift the count.
-      config.gpio_edge_period_ns = static_cast<uint32_t>(frames.period_ns);
-      config.gpio_edge_epoch_ns = frames.start_ns;
-      config.gpio_edge_numbering = protocol::GpioEdgeNumbering::kNearestCoarseTime;
-    }
+    // (target_board_config of the scenario's targets, with the board's own epoch and, for
+    // GPIO, pulse k of the trigger = frame k's exposure start.)
+    const protocol::Config config = sim::firmware_board_config(scenario, i, power_on);
     if (auto done = board->configure(config); !done) return tl::unexpected(done.error());
 
     if (clock.sync == sim::BoardSync::kCan) {

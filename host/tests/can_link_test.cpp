@@ -1,4 +1,4 @@
-// CanLink over an in-memory bus (unit level; tests/vm/host runs it on vcan): the golden
+// CanLink over an in-memory bus (unit level; tests/vm/board runs it on vcan): the golden
 // CAN transfers byte for byte both ways, a conversation with a responder, broadcasts
 // answered by several boards, bus-off (more faults: can_faults_test.cpp).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The sync master's logic without hardware (tests/vm/host runs it on vcan and gpio-sim):
+// The sync master's logic without hardware (tests/vm/board runs it on vcan and gpio-sim):
 // CanSync's Sync/FollowUp pairs and their transmit-time sources over an in-memory bus, the
 // strobe edge pairing, and the exposures file.
 #include <gtest/gtest.h>

@@ -31,7 +31,7 @@ void CodeChecks::refit_clock(const BlobTracker& tracker, const CodeReading& read
   const Target& target = targets_.targets[t];
   uint32_t length = 1;
   for (const Marker& m : target.markers)
-    if (m.code) length = std::max(length, m.code->length);
+    if (m.code) length = std::max<uint32_t>(length, m.code->length);
   tt->clock.refit(mid_ns, length, [&](const CodeClock& clock) {
     double cost = 0;
     for (int m = 0; m < 4; ++m) {

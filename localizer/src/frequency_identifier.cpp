@@ -113,12 +113,6 @@ bool same_code(const Code& a, const Code& b, bool any_rotation) {
 
 }  // namespace
 
-bool is_square_wave(const Code& code) {
-  uint32_t rises = 0;  // 0 -> 1 steps around the cycle: one for "1..10..0", none for a constant
-  for (uint32_t i = 0; i < code.length; ++i) rises += !code.bit(i) && code.bit(i + 1);
-  return rises == 1;
-}
-
 std::vector<RigCode> rig_codes(const TargetsFile& targets) {
   std::vector<RigCode> out;
   if (targets.modulation.kind == ModulationKind::kConstant) return out;
@@ -132,7 +126,7 @@ std::vector<RigCode> rig_codes(const TargetsFile& targets) {
       if (it == out.end()) {
         RigCode r;
         r.code = *code;
-        r.frequency = is_square_wave(*code);
+        r.frequency = protocol::is_square_wave(*code);
         out.push_back(r);
         it = out.end() - 1;
       }

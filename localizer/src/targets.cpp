@@ -2,19 +2,19 @@
 
 namespace tetrapulse {
 
-std::string Code::str() const {
-  std::string s(length, '0');
-  for (uint32_t i = 0; i < length; ++i) s[i] = bit(i) ? '1' : '0';
+std::string code_text(const Code& code) {
+  std::string s(code.length, '0');
+  for (uint32_t i = 0; i < code.length; ++i) s[i] = code.bit(i) ? '1' : '0';
   return s;
 }
 
-std::optional<Code> Code::parse(const std::string& text, std::string* why) {
+std::optional<Code> parse_code(const std::string& text, std::string* why) {
   if (text.empty() || text.size() > 64) {
     if (why) *why = "must have 1 to 64 bits, has " + std::to_string(text.size());
     return std::nullopt;
   }
   Code c;
-  c.length = static_cast<uint32_t>(text.size());
+  c.length = static_cast<uint8_t>(text.size());
   for (uint32_t i = 0; i < c.length; ++i) {
     if (text[i] == '1') {
       c.bits |= uint64_t{1} << i;
@@ -26,13 +26,10 @@ std::optional<Code> Code::parse(const std::string& text, std::string* why) {
   return c;
 }
 
-const char* modulation_kind_name(ModulationKind kind) {
-  switch (kind) {
-    case ModulationKind::kOnOff: return "on_off";
-    case ModulationKind::kTwoLevel: return "two_level";
-    case ModulationKind::kConstant: return "constant";
-  }
-  return "on_off";
+std::array<Code, 4> Target::codes() const {
+  std::array<Code, 4> out{};
+  for (size_t k = 0; k < markers.size(); ++k) out[k] = markers[k].code.value_or(Code{});
+  return out;
 }
 
 const Target* TargetsFile::find(int id) const {

@@ -91,7 +91,7 @@ TEST(BlobTracker, KeepsIdentitiesWithTheCallersPrediction) {
 }
 
 TEST(BlobTracker, CoastsThroughAZeroRunThenDeletes) {
-  const Code code = *Code::parse("1100010", nullptr);
+  const Code code = *parse_code("1100010", nullptr);
   ASSERT_EQ(longest_zero_run(code), 3);
   TargetsFile targets;
   targets.modulation.kind = ModulationKind::kOnOff;
@@ -181,15 +181,15 @@ TEST(BlobTracker, HistoryKeepsTheNewest64Samples) {
 }
 
 TEST(BlobTracker, LongestZeroRunCountsAcrossTheWrap) {
-  EXPECT_EQ(longest_zero_run(*Code::parse("0110", nullptr)), 2);
-  EXPECT_EQ(longest_zero_run(*Code::parse("0000", nullptr)), 4);
-  EXPECT_EQ(longest_zero_run(*Code::parse("1", nullptr)), 0);
-  EXPECT_EQ(longest_zero_run(*Code::parse("1000110", nullptr)), 3);
+  EXPECT_EQ(longest_zero_run(*parse_code("0110", nullptr)), 2);
+  EXPECT_EQ(longest_zero_run(*parse_code("0000", nullptr)), 4);
+  EXPECT_EQ(longest_zero_run(*parse_code("1", nullptr)), 0);
+  EXPECT_EQ(longest_zero_run(*parse_code("1000110", nullptr)), 3);
   TargetsFile targets;
   targets.modulation.kind = ModulationKind::kOnOff;
   targets.timebase.bit_period_ns = 20'000'000;
   targets.targets.resize(1);
-  targets.targets[0].markers[2].code = *Code::parse("1000110", nullptr);
+  targets.targets[0].markers[2].code = *parse_code("1000110", nullptr);
   EXPECT_EQ(coast_frames_for(targets, 10'000'000), 3 * 2 + 1);  // two frames a bit
   targets.modulation.kind = ModulationKind::kTwoLevel;
   EXPECT_EQ(coast_frames_for(targets, 10'000'000), 1);

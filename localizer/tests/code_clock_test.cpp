@@ -1,4 +1,4 @@
-// The contract's bit timing (spec/rig-dataset.md) and how codes explain a
+// The contract's bit timing (docs/rig-dataset.md) and how codes explain a
 // track's read bits: exposures inside one bit, across edges, free-running phases.
 #include "tetrapulse/localizer/code_clock.hpp"
 
@@ -11,7 +11,7 @@ namespace {
 
 constexpr int64_t kBit = 10'000'000;
 
-Code code(const char* text) { return *Code::parse(text, nullptr); }
+Code code(const char* text) { return *parse_code(text, nullptr); }
 
 TEST(CodeClock, BitNumberIsTheContractsFloor) {
   const CodeClock c{1'000, kBit, 1.0};

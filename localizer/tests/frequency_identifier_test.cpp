@@ -102,7 +102,7 @@ TargetsFile rig_of(const protocol::FrequencyCodebook& book, bool synchronized) {
   for (uint32_t i = 0; i < book.count; ++i) {
     Target t;
     t.id = static_cast<int>(i) + 1;
-    for (Marker& m : t.markers) m.code = Code{book.codes[i].word, book.codes[i].wave.length};
+    for (Marker& m : t.markers) m.code = Code{book.codes[i].wave.length, book.codes[i].word};
     rig.targets.push_back(t);
   }
   return rig;
@@ -119,10 +119,10 @@ TEST(FrequencyIdentifier, FindsTheSquareWavesOfARig) {
   TargetsFile rig;
   rig.timebase.synchronized = false;
   Target t;
-  t.markers[0].code = *Code::parse("111000", nullptr);
-  t.markers[1].code = *Code::parse("011100", nullptr);  // a rotation: the same code free-running
-  t.markers[2].code = *Code::parse("10", nullptr);
-  t.markers[3].code = *Code::parse("110100", nullptr);  // two runs of 1s: binary
+  t.markers[0].code = *parse_code("111000", nullptr);
+  t.markers[1].code = *parse_code("011100", nullptr);  // a rotation: the same code free-running
+  t.markers[2].code = *parse_code("10", nullptr);
+  t.markers[3].code = *parse_code("110100", nullptr);  // two runs of 1s: binary
   rig.targets.push_back(t);
   const std::vector<RigCode> codes = rig_codes(rig);
   ASSERT_EQ(codes.size(), 3u);
@@ -216,7 +216,7 @@ TEST(FrequencyIdentifier, NeverConfusesBinaryAndFrequencyCodes) {
     for (const char* text : {"111001110001011", "110110011101001", "010110001100100", "100110101101000"}) {
       Target t;
       t.id = static_cast<int>(rig.targets.size()) + 1;
-      for (Marker& m : t.markers) m.code = *Code::parse(text, nullptr);
+      for (Marker& m : t.markers) m.code = *parse_code(text, nullptr);
       rig.targets.push_back(t);
     }
     FrequencyIdentifier probe(rig);
@@ -236,8 +236,8 @@ TEST(FrequencyIdentifier, NeverConfusesBinaryAndFrequencyCodes) {
       wrong += r.wrong;
       undecided += r.first_decision < 0;
     }
-    EXPECT_EQ(wrong, 0) << modulation_kind_name(kind);
-    EXPECT_EQ(undecided, 0) << modulation_kind_name(kind);
+    EXPECT_EQ(wrong, 0) << modulation_name(kind);
+    EXPECT_EQ(undecided, 0) << modulation_name(kind);
   }
 }
 
@@ -245,12 +245,12 @@ TEST(FrequencyIdentifier, NeverConfusesBinaryAndFrequencyCodes) {
 TEST(FrequencyIdentifier, ConstantLightAndForeignCodesStayUnknown) {
   const protocol::FrequencyCodebook book = codebook_100fps(8);
   const TargetsFile rig = rig_of(book, false);
-  Board lamp{*Code::parse("1", nullptr), book.bit_period_ns, 0, 0};
+  Board lamp{*parse_code("1", nullptr), book.bit_period_ns, 0, 0};
   StreamOptions o;
   o.frames = 120;
   EXPECT_EQ(run_stream(rig, lamp, -1, o).decided_frames, 0);
   // Flicker that is no code of the rig: a random 64-bit word, one bit per frame.
-  Board flicker{Code{0x9E3779B97F4A7C15ull, 64}, kFramePeriod, 0, 2.5e6};
+  Board flicker{Code{64, 0x9E3779B97F4A7C15ull}, kFramePeriod, 0, 2.5e6};
   EXPECT_EQ(run_stream(rig, flicker, -1, o).decided_frames, 0);
 }
 

@@ -14,7 +14,7 @@ class LocalizerApi : public ::testing::Test {
   LocalizerApi() {
     Target t = testing::hardware_target("paper-large.yaml");
     t.id = 4;
-    for (Marker& m : t.markers) m.code = Code::parse("010011100101", nullptr);
+    for (Marker& m : t.markers) m.code = parse_code("010011100101", nullptr);
     targets.targets.push_back(t);
     targets.modulation = Modulation{ModulationKind::kTwoLevel, 0.3};
   }

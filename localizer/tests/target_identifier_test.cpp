@@ -19,13 +19,13 @@ constexpr int64_t kFrameNs = 10'000'000;  // 100 fps, one frame per 10 ms bit
 constexpr int64_t kExposureNs = 2'000'000;
 constexpr int64_t kFirstStartNs = 4'000'000;  // exposures in the middle of the bits
 
-Code code(const char* text) { return *Code::parse(text, nullptr); }
+Code code(const char* text) { return *parse_code(text, nullptr); }
 
 // Two targets of the paper's geometry, each marker with its own 12-bit code
 // (sim/scenarios/swarm.yaml's first two targets).
 TargetsFile two_coded_targets(ModulationKind kind = ModulationKind::kTwoLevel) {
   TargetsFile f;
-  f.timebase = Timebase{true, 0, kFrameNs};
+  f.timebase = Timebase{0, kFrameNs, true};
   f.modulation = Modulation{kind, kind == ModulationKind::kTwoLevel ? 0.3 : 0.0};
   const char* codes[2][4] = {{"010011100101", "011001001001", "100111110010", "010010010110"},
                              {"100110101100", "101101010110", "100101100110", "011100101010"}};
@@ -141,7 +141,7 @@ TEST_F(Identify, SynchronizedCodesNameBothTargetsAndMarkersWithinOneCodeLength) 
     const Watch r = watch(camera, targets, shown, 36, 1);
     for (const Shown& s : shown) {
       expect_correct(camera, targets, s, r);
-      EXPECT_LE(r.first.at(s.target).first, 12) << modulation_kind_name(kind);  // one code length, in frames
+      EXPECT_LE(r.first.at(s.target).first, 12) << modulation_name(kind);  // one code length, in frames
     }
   }
 }

@@ -217,7 +217,7 @@ FrequencyReport check_frequency_codes(const FrequencySpec& spec, const uint64_t*
   }
   auto code_of = [&](size_t i, FrequencyCode* c) {
     SquareWave wave;
-    if (!is_square_wave(words[i], lengths[i], &wave)) return false;
+    if (!is_square_wave(Code{lengths[i], words[i]}, &wave)) return false;
     *c = measure(spec, spec.bit_period_ns, wave, true);
     return true;
   };
@@ -235,8 +235,8 @@ FrequencyReport check_frequency_codes(const FrequencySpec& spec, const uint64_t*
     for (size_t j = i + 1; j < n; ++j) {
       SquareWave wa;
       SquareWave wb;
-      is_square_wave(words[i], lengths[i], &wa);
-      is_square_wave(words[j], lengths[j], &wb);
+      is_square_wave(Code{lengths[i], words[i]}, &wa);
+      is_square_wave(Code{lengths[j], words[j]}, &wb);
       const FrequencyCode a = measure(spec, spec.bit_period_ns, wa, false);
       const FrequencyCode b = measure(spec, spec.bit_period_ns, wb, false);
       if (pair_margin(a, b) < m) return FrequencyReport{FrequencyFault::kTooClose, static_cast<uint16_t>(i),

@@ -1,21 +1,7 @@
 #include "tetrapulse/protocol/frequency_code.hpp"
 
-#include "tetrapulse/protocol/codebook_word.hpp"
 
 namespace tetrapulse::protocol {
-
-uint64_t square_wave_word(SquareWave wave) { return word_mask(wave.ones); }
-
-bool is_square_wave(uint64_t word, uint32_t length, SquareWave* wave) {
-  if (length < 2 || length > 64) return false;
-  word &= word_mask(length);
-  const uint32_t ones = word_weight(word);
-  if (ones == 0 || ones == length) return false;
-  // One run of each exactly when the 1s form one cyclic run of length `ones`.
-  if (max_cyclic_run(word, length, true) != ones) return false;
-  if (wave != nullptr) *wave = SquareWave{static_cast<uint8_t>(length), static_cast<uint8_t>(ones)};
-  return true;
-}
 
 uint64_t ratio_q32(uint64_t a, uint64_t b) {
   if (b == 0 || b >= (uint64_t{1} << 55) || a / b >= (uint64_t{1} << 31)) return ~uint64_t{0};

@@ -78,15 +78,15 @@ RC_GTEST_PROP(FrequencyCode, LitTimeMatchesStepwiseIntegration, ()) {
 
 TEST(FrequencyCode, SquareWavesAreOneRunOfEach) {
   SquareWave w;
-  EXPECT_TRUE(is_square_wave(0b0111000, 7, &w));  // "0001110": rotation of "1110000"
+  EXPECT_TRUE(is_square_wave(Code{7, 0b0111000}, &w));  // "0001110": rotation of "1110000"
   EXPECT_EQ(w.length, 7);
   EXPECT_EQ(w.ones, 3);
-  EXPECT_TRUE(is_square_wave(0b1000001, 7, &w));  // wraps around
+  EXPECT_TRUE(is_square_wave(Code{7, 0b1000001}, &w));  // wraps around
   EXPECT_EQ(w.ones, 2);
-  EXPECT_FALSE(is_square_wave(0b0101, 4, nullptr));  // "1010": two runs of each
-  EXPECT_FALSE(is_square_wave(0b1111, 4, nullptr));
-  EXPECT_FALSE(is_square_wave(0, 4, nullptr));
-  EXPECT_FALSE(is_square_wave(0b1, 1, nullptr));
+  EXPECT_FALSE(is_square_wave(Code{4, 0b0101}, nullptr));  // "1010": two runs of each
+  EXPECT_FALSE(is_square_wave(Code{4, 0b1111}, nullptr));
+  EXPECT_FALSE(is_square_wave(Code{4, 0}, nullptr));
+  EXPECT_FALSE(is_square_wave(Code{1, 0b1}, nullptr));
   EXPECT_EQ(text(square_wave_word(SquareWave{6, 3}), 6), "111000");
 }
 
@@ -299,7 +299,7 @@ RC_GTEST_PROP(CodebookFrequency, ChosenPairsStaySeparableUnderClockError, ()) {
   std::vector<std::string> necklaces;
   for (uint32_t i = 0; i < book.count; ++i) {
     const FrequencyCode& c = book.codes[i];
-    RC_ASSERT(is_square_wave(c.word, c.wave.length, nullptr));
+    RC_ASSERT(is_square_wave(Code{c.wave.length, c.word}, nullptr));
     if (s.max_dark_frames != kNoDarkLimit) RC_ASSERT(c.visibility.dark_frames <= s.max_dark_frames);
     RC_ASSERT(c.visibility.swing_percent >= s.min_swing_percent);
     necklaces.push_back(text(least_rotation(c.word, c.wave.length), c.wave.length));

@@ -45,7 +45,7 @@ RC_GTEST_PROP(PwmCode, QuantisationIsAsStated, ()) {
   const Result<PwmCode> p = pwm_code(mhz, duty);
   RC_ASSERT(p.ok());
   SquareWave wave;
-  RC_ASSERT(is_square_wave(p->code.bits, p->code.length, &wave));
+  RC_ASSERT(is_square_wave(p->code, &wave));
   RC_ASSERT(p->bit_period_ns >= kMinBitPeriodNs);
   const double L = p->code.length;
   const double period_ns = L * p->bit_period_ns;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "tetrapulse/protocol/message.hpp"
+#include "tetrapulse/protocol/target_config.hpp"
 #include "tetrapulse/sim/scene_builder.hpp"
 
 namespace tetrapulse::sim {
@@ -18,39 +19,6 @@ uint64_t splitmix(uint64_t* state) {
   return z ^ (z >> 31);
 }
 
-protocol::Config board_config(const Scenario& s, size_t index, int64_t power_on_ns) {
-  const Target& target = s.targets.targets[index];
-  const BoardClockSpec& clock = s.simulation[index].clock;
-  protocol::Config c = protocol::default_config();
-  c.node_id = static_cast<uint8_t>(1 + index % 254);
-  c.target_id = static_cast<uint16_t>(target.id);
-  for (size_t m = 0; m < 4; ++m) {
-    const std::optional<Code>& code = target.markers[m].code;
-    c.codes[m] = code ? protocol::Code{static_cast<uint8_t>(code->length), code->bits} : protocol::Code{};
-  }
-  switch (s.targets.modulation.kind) {
-    case ModulationKind::kOnOff: c.modulation = protocol::Modulation::kOnOff; break;
-    case ModulationKind::kTwoLevel: c.modulation = protocol::Modulation::kTwoLevel; break;
-    case ModulationKind::kConstant: c.modulation = protocol::Modulation::kConstant; break;
-  }
-  c.low_level = static_cast<uint16_t>(std::lround(s.targets.modulation.low * 65535.0));
-  c.bit_period_ns = static_cast<uint32_t>(s.targets.timebase.bit_period_ns);
-  c.epoch_ns = firmware_board_epoch_ns(s, index, power_on_ns);
-  switch (clock.sync) {
-    case BoardSync::kGpio:
-      c.sync_source = protocol::SyncSource::kGpio;
-      // Edge k is exposure k's start; k is found from the coarse time of FollowUps, so a
-      // board that misses edges (sync loss) still numbers the next ones right.
-      c.gpio_edge_period_ns = static_cast<uint32_t>(s.frames.period_ns);
-      c.gpio_edge_epoch_ns = s.frames.start_ns;
-      c.gpio_edge_numbering = protocol::GpioEdgeNumbering::kNearestCoarseTime;
-      break;
-    case BoardSync::kCan: c.sync_source = protocol::SyncSource::kCan; break;
-    case BoardSync::kNone: c.sync_source = protocol::SyncSource::kNone; break;
-  }
-  return c;
-}
-
 }  // namespace
 
 sim_board::SimBoardOptions firmware_board_options(const Scenario& scenario, size_t index,
@@ -58,9 +26,29 @@ sim_board::SimBoardOptions firmware_board_options(const Scenario& scenario, size
   sim_board::SimBoardOptions o;
   o.clock_ppm = scenario.simulation[index].clock.drift_ppm;
   o.power_on_ns = scenario.frames.start_ns - options.lead_in_ns;
-  o.node_id = static_cast<uint8_t>(1 + index % 254);
+  o.node_id = protocol::target_node_id(index);
   for (size_t i = 0; i < o.serial.size(); ++i) o.serial[i] = static_cast<uint8_t>((index + 1) * 37 + i);
   return o;
+}
+
+protocol::Config firmware_board_config(const Scenario& s, size_t index, int64_t power_on_ns) {
+  const Target& target = s.targets.targets[index];
+  const BoardClockSpec& clock = s.simulation[index].clock;
+  const protocol::SyncSource sync = clock.sync == BoardSync::kGpio  ? protocol::SyncSource::kGpio
+                                    : clock.sync == BoardSync::kCan ? protocol::SyncSource::kCan
+                                                                    : protocol::SyncSource::kNone;
+  protocol::Config c = protocol::target_config(static_cast<uint16_t>(target.id), target.codes(), s.targets.modulation,
+                                               s.targets.timebase, index, sync);
+  // The board's own epoch: its clock's offset (and, free-running, its power-on time).
+  c.epoch_ns = firmware_board_epoch_ns(s, index, power_on_ns);
+  if (clock.sync == BoardSync::kGpio) {
+    // Edge k is exposure k's start; k is found from the coarse time of FollowUps, so a
+    // board that misses edges (sync loss) still numbers the next ones right.
+    c.gpio_edge_period_ns = static_cast<uint32_t>(s.frames.period_ns);
+    c.gpio_edge_epoch_ns = s.frames.start_ns;
+    c.gpio_edge_numbering = protocol::GpioEdgeNumbering::kNearestCoarseTime;
+  }
+  return c;
 }
 
 int64_t firmware_board_epoch_ns(const Scenario& scenario, size_t index, int64_t power_on_ns) {
@@ -98,7 +86,7 @@ FirmwareBoardEmitter::FirmwareBoardEmitter(const Scenario& scenario, size_t inde
   // before it.
   const int64_t first_edge = firmware_first_sync_edge_ns(scenario, options);
   board_->advance_to(power_on + 10 * kMs);
-  const protocol::Message set{1, protocol::SetConfig{board_config(scenario, index, power_on)}};
+  const protocol::Message set{1, protocol::SetConfig{firmware_board_config(scenario, index, power_on)}};
   const protocol::Result<protocol::Message> answer = host_->request(fw::LinkKind::kUsb, set);
   configured_ = answer.ok() && answer->get<protocol::Ack>() != nullptr;
   next_sync_ns_ = sync_ == BoardSync::kGpio ? first_edge : power_on + 100 * kMs;

@@ -21,7 +21,7 @@ using yaml_fields::Fields;
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-// The contract's bound on a free-running board's rate error (spec/rig-dataset.md).
+// The contract's bound on a free-running board's rate error (docs/rig-dataset.md).
 constexpr double kMaxClockPpm = 200.0;
 
 int64_t seconds_to_ns(double s) { return static_cast<int64_t>(std::llround(s * 1e9)); }

@@ -19,7 +19,7 @@ Target target_with_codes(const char* c0, const char* c1 = "10", const char* c2 =
   t.id = 1;
   t.marker_diameter_m = 0.03;
   const char* codes[] = {c0, c1, c2, c3};
-  for (int m = 0; m < 4; ++m) t.markers[static_cast<size_t>(m)].code = Code::parse(codes[m], nullptr);
+  for (int m = 0; m < 4; ++m) t.markers[static_cast<size_t>(m)].code = parse_code(codes[m], nullptr);
   return t;
 }
 
@@ -49,7 +49,7 @@ TEST(CodeEmitter, AWindowInsideOneBitPlaysThatBit) {
   const Timebase tb = timebase(-3'000'000, 10'000'000);
   const CodeEmitter e(tb, two_level(0.25), target_with_codes("1101001110"), BoardClock{});
   const protocol::TimeBase ptb{tb.epoch_ns, tb.bit_period_ns};
-  const Code code = *Code::parse("1101001110", nullptr);
+  const Code code = *parse_code("1101001110", nullptr);
   for (int64_t k = -25; k < 25; ++k) {
     const int64_t t0 = k * 10'000'000 + 1'000'000;  // [t0, t0 + 2 ms) lies inside one bit
     const double expected = code.bit(protocol::bit_index(ptb, t0, code.length)) ? 1.0 : 0.25;
@@ -85,7 +85,7 @@ RC_GTEST_PROP(CodeEmitter, MeanIsTheFormulaIntegrated, ()) {
   const int64_t t1 = t0 + *rc::gen::inRange<int64_t>(1, 80000);
   const double exact = e.mean_emission(0, t0, t1);
   const int steps = 200000;
-  const double brute = brute_force_mean(*Code::parse(code_text, nullptr), tb, low, clock, t0, t1, steps);
+  const double brute = brute_force_mean(*parse_code(code_text, nullptr), tb, low, clock, t0, t1, steps);
   // The midpoint rule misplaces each edge by at most half a step.
   const double edges = static_cast<double>(t1 - t0) / (period * (1 - 0.021)) + 3;
   RC_ASSERT(std::abs(exact - brute) <= edges * (1 - low) / steps + 1e-12);

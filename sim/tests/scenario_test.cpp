@@ -97,7 +97,7 @@ uint32_t longest_cyclic_zero_run(const Code& c) {
     run = c.bit(i) ? 0 : run + 1;
     best = std::max(best, run);
   }
-  return std::min(best, c.length);
+  return std::min<uint32_t>(best, c.length);
 }
 
 // Why the codes of one scenario fail its time base's constraints, or "" when they pass.
@@ -107,21 +107,21 @@ std::string code_violations(const std::vector<Code>& codes, bool synchronized) {
     const Code& c = codes[i];
     const int weight = __builtin_popcountll(c.bits);
     if (synchronized) {
-      if (c.length != 12) why << c.str() << ": length " << c.length << " (want 12); ";
-      if (weight < 5 || weight > 7) why << c.str() << ": weight " << weight << " (want 5..7); ";
-      if (longest_cyclic_zero_run(c) > 2) why << c.str() << ": a cyclic zero run over 2; ";
+      if (c.length != 12) why << code_text(c) << ": length " << unsigned(c.length) << " (want 12); ";
+      if (weight < 5 || weight > 7) why << code_text(c) << ": weight " << weight << " (want 5..7); ";
+      if (longest_cyclic_zero_run(c) > 2) why << code_text(c) << ": a cyclic zero run over 2; ";
       for (size_t j = i + 1; j < codes.size(); ++j) {
-        if (hamming(c, codes[j]) < 3) why << c.str() << " vs " << codes[j].str() << ": distance < 3; ";
+        if (hamming(c, codes[j]) < 3) why << code_text(c) << " vs " << code_text(codes[j]) << ": distance < 3; ";
       }
     } else {
-      if (c.length != 15) why << c.str() << ": length " << c.length << " (want 15); ";
-      if (longest_cyclic_zero_run(c) > 3) why << c.str() << ": a cyclic zero run over 3; ";
+      if (c.length != 15) why << code_text(c) << ": length " << unsigned(c.length) << " (want 15); ";
+      if (longest_cyclic_zero_run(c) > 3) why << code_text(c) << ": a cyclic zero run over 3; ";
       for (uint32_t k = 1; k < c.length; ++k) {
-        if (hamming(c, rotate(c, k)) < 3) why << c.str() << ": its own shift " << k << " is within distance 2; ";
+        if (hamming(c, rotate(c, k)) < 3) why << code_text(c) << ": its own shift " << k << " is within distance 2; ";
       }
       for (size_t j = i + 1; j < codes.size(); ++j) {
         for (uint32_t k = 0; k < c.length; ++k) {
-          if (hamming(c, rotate(codes[j], k)) < 3) why << c.str() << " vs a shift of " << codes[j].str() << "; ";
+          if (hamming(c, rotate(codes[j], k)) < 3) why << code_text(c) << " vs a shift of " << code_text(codes[j]) << "; ";
         }
       }
     }
@@ -149,7 +149,7 @@ TEST(BuiltinScenarios, CodesMeetTheirTimeBasesConstraints) {
     }
     EXPECT_EQ(codes.size(), 4 * s.targets.targets.size()) << b.name << ": one code per marker";
     if (std::all_of(codes.begin(), codes.end(), [](const Code& c) {
-          return protocol::is_square_wave(c.bits, c.length, nullptr);
+          return protocol::is_square_wave(c);
         })) {
       // Frequency codes (SPEC.md §8.5): the distinct ones separable at this camera.
       std::vector<uint64_t> words;
@@ -180,7 +180,7 @@ TEST(BuiltinScenarios, CodesMeetTheirTimeBasesConstraints) {
 }
 
 TEST(BuiltinScenarios, TheCodeCheckCatchesBadCodes) {
-  const auto code = [](const char* t) { return *Code::parse(t, nullptr); };
+  const auto code = [](const char* t) { return *parse_code(t, nullptr); };
   EXPECT_NE(code_violations({code("010011100101"), code("010011100110")}, true), "");     // distance 2
   EXPECT_NE(code_violations({code("000111100101")}, true), "");                           // zero run 3
   EXPECT_NE(code_violations({code("111111100101")}, true), "");                           // weight 9

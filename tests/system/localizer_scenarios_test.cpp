@@ -166,7 +166,7 @@ TEST(Scenarios, SwarmWithFrequencyAndBinaryCodesNeverConfusesThem) {
   const char* const waves[] = {"1100", "111000"};
   for (size_t t = 2; t < 4; ++t) {
     std::string why;
-    const auto code = Code::parse(waves[t - 2], &why);
+    const auto code = parse_code(waves[t - 2], &why);
     ASSERT_TRUE(code) << why;
     for (Marker& m : scenario->targets.targets[t].markers) m.code = *code;
   }

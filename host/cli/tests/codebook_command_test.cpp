@@ -254,14 +254,14 @@ TEST(CodebookCommand, CheckSaysWhichCodesFailWhichConstraint) {
   near.bits ^= 1u << 4;
   file->targets[2].markers[1].code = near;
   std::string why;
-  file->targets[1].markers[2].code = Code::parse("110000011011", &why);
+  file->targets[1].markers[2].code = parse_code("110000011011", &why);
   ASSERT_TRUE(write_text_file(out, format_targets_yaml(*file)));
 
   const CommandRun r = codebook(dir, {"check", out});
   EXPECT_EQ(r.exit, kExitCheckFailed);
   EXPECT_NE(r.err.find("targets[1] (id 2) marker 2 '110000011011': 5 zeros in a row"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("targets[0] (id 1) marker 0 '" + file->targets[0].markers[0].code->str() +
-                       "' and targets[2] (id 3) marker 1 '" + near.str() + "' differ in only 1 bits"),
+  EXPECT_NE(r.err.find("targets[0] (id 1) marker 0 '" + code_text(*file->targets[0].markers[0].code) +
+                       "' and targets[2] (id 3) marker 1 '" + code_text(near) + "' differ in only 1 bits"),
             std::string::npos)
       << r.err;
   // Relaxed enough, the run passes; the close pair does not.
@@ -279,9 +279,9 @@ TEST(CodebookCommand, CheckOfFreeRunningCodesNamesTheShift) {
   ASSERT_TRUE(file);
   // targets[1] marker 3 plays targets[0] marker 0 started 4 bits late.
   const Code a = *file->targets[0].markers[0].code;
-  const std::string text = a.str();
+  const std::string text = code_text(a);
   std::string why;
-  file->targets[1].markers[3].code = Code::parse(text.substr(4) + text.substr(0, 4), &why);
+  file->targets[1].markers[3].code = parse_code(text.substr(4) + text.substr(0, 4), &why);
   ASSERT_TRUE(write_text_file(out, format_targets_yaml(*file)));
   const CommandRun r = codebook(dir, {"check", out});
   EXPECT_EQ(r.exit, kExitCheckFailed);
@@ -390,12 +390,12 @@ TEST(CodebookCommand, CheckOfFrequencyCodesAtTheCamera) {
   // targets[1] plays targets[0]'s square wave one bit late: the same frequency. targets[2]
   // repeats once a frame (k bits of P / k): it looks constant.
   const Code first = *file->targets[0].markers[0].code;
-  const std::string text = first.str();
-  const Code late = *Code::parse(text.substr(text.size() - 1) + text.substr(0, text.size() - 1), nullptr);
+  const std::string text = code_text(first);
+  const Code late = *parse_code(text.substr(text.size() - 1) + text.substr(0, text.size() - 1), nullptr);
   const int64_t k = (10'000'000 + T / 2) / T;
   ASSERT_GE(k, 2);
   ASSERT_LE(k, 64);
-  const Code constant = *Code::parse(std::string(static_cast<size_t>(k / 2), '1') +
+  const Code constant = *parse_code(std::string(static_cast<size_t>(k / 2), '1') +
                                          std::string(static_cast<size_t>(k - k / 2), '0'),
                                      nullptr);
   for (Marker& m : file->targets[1].markers) m.code = late;
@@ -403,10 +403,10 @@ TEST(CodebookCommand, CheckOfFrequencyCodesAtTheCamera) {
   ASSERT_TRUE(write_text_file(out, format_targets_yaml(*file)));
   const CommandRun bad = codebook(dir, {"check", out, "--fps", "100", "--exposure", "2ms"});
   EXPECT_EQ(bad.exit, kExitCheckFailed);
-  EXPECT_NE(bad.err.find("targets[2] (id 3) '" + constant.str() + "': seen at 0.0"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("targets[2] (id 3) '" + code_text(constant) + "': seen at 0.0"), std::string::npos) << bad.err;
   EXPECT_NE(bad.err.find("it looks constant"), std::string::npos) << bad.err;
   EXPECT_NE(bad.err.find("targets[0] (id 1) '" + text + "' seen at"), std::string::npos) << bad.err;
-  EXPECT_NE(bad.err.find("and targets[1] (id 2) '" + late.str() + "' seen at"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("and targets[1] (id 2) '" + code_text(late) + "' seen at"), std::string::npos) << bad.err;
   EXPECT_NE(bad.err.find("too close to tell apart"), std::string::npos) << bad.err;
   EXPECT_NE(bad.err.find("2 faults in 8 codes (one per target)"), std::string::npos) << bad.err;
   EXPECT_EQ(lines(bad.err), 3u) << bad.err;
@@ -427,7 +427,7 @@ TEST(CodebookCommand, CheckOfAMixedFileChecksEachFamilyAndBetweenThem) {
   file->timebase.bit_period_ns = 2'500'000;
   const char* codes[] = {"1110000", "111100000000", "11010011000101", "10011101001100"};
   auto set = [&](size_t target, const std::string& code) {
-    for (Marker& m : file->targets[target].markers) m.code = *Code::parse(code, nullptr);
+    for (Marker& m : file->targets[target].markers) m.code = *parse_code(code, nullptr);
   };
   for (size_t i = 0; i < 4; ++i) set(i, codes[i]);
   ASSERT_TRUE(write_text_file(out, format_targets_yaml(*file)));

@@ -1,5 +1,5 @@
 #pragma once
-// Reading and writing the files of a rig dataset (spec/rig-dataset.md), each
+// Reading and writing the files of a rig dataset (docs/rig-dataset.md), each
 // checked field by field. Readers report the file, line and field of the first
 // problem; writers round-trip every field (doubles in shortest exact form).
 #include <cstdint>

@@ -2,7 +2,7 @@
 // Where the localizer's frames come from: a rig dataset's images, a recorded
 // video with a timestamps file, or a live V4L2 camera (both through OpenCV's
 // VideoCapture). Every frame carries its exposure in rig time (integer ns,
-// [timestamp_ns, timestamp_ns + exposure_ns), spec/rig-dataset.md). Images
+// [timestamp_ns, timestamp_ns + exposure_ns), docs/rig-dataset.md). Images
 // come as 8- or 16-bit grey (colour is converted). A frame whose image cannot
 // be had (missing, empty, truncated or undecodable file, not camera-sized, a bad
 // camera buffer) costs only itself: it comes with `unreadable` set and is skipped.

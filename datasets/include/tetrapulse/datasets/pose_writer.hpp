@@ -1,6 +1,6 @@
 #pragma once
 // Writing the localizer's poses:
-//   csv    poses.csv exactly as spec/rig-dataset.md defines it;
+//   csv    poses.csv exactly as docs/rig-dataset.md defines it;
 //   tum    TUM RGB-D trajectories, "timestamp tx ty tz qx qy qz qw" with the
 //          mid-exposure time in seconds: one file per target (PATH itself for a
 //          single target, else STEM.target<ID>EXT);

@@ -1,5 +1,5 @@
 #pragma once
-// A rig dataset folder (spec/rig-dataset.md): reading it for the localizer and
+// A rig dataset folder (docs/rig-dataset.md): reading it for the localizer and
 // evaluation, and writing one for the simulator and recorders.
 #include <optional>
 #include <string>

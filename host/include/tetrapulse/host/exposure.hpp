@@ -1,6 +1,6 @@
 #pragma once
 // Camera exposures in rig time, as the sync master records them, and the file a recorder
-// turns into a rig dataset's frames.csv (spec/rig-dataset.md): header
+// turns into a rig dataset's frames.csv (docs/rig-dataset.md): header
 // `frame,timestamp_ns,exposure_ns`, one row per exposure; the sensor integrated light over
 // [timestamp_ns, timestamp_ns + exposure_ns) of rig time (integer ns). `frame` counts from
 // 0 and skips the numbers of exposures that were missed.

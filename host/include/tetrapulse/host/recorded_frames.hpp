@@ -1,6 +1,6 @@
 #pragma once
 // A recorder's last step: from the sync master's exposures (rig time, exposure.hpp) and the
-// images the camera delivered to a rig dataset's frames.csv (spec/rig-dataset.md).
+// images the camera delivered to a rig dataset's frames.csv (docs/rig-dataset.md).
 //
 // Each image comes with the rig time it arrived (the camera driver's buffer timestamp
 // through RigClock), which is after its exposure ended (readout, transfer). It belongs to

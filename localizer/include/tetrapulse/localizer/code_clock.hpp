@@ -1,5 +1,5 @@
 #pragma once
-// Which code bit a target's board plays when (spec/rig-dataset.md): bit number
+// Which code bit a target's board plays when (docs/rig-dataset.md): bit number
 //   n(t) = floor((t - origin_ns) * rate / bit_period_ns),   bit index = n mod L,
 // t in integer nanoseconds of rig time. Synchronized boards: origin = epoch_ns,
 // rate = 1. Free-running boards: origin and rate (1 +- 200e-6) are estimated

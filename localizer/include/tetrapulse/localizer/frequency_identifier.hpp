@@ -68,13 +68,10 @@ struct FrequencySample {
   double intensity = 0;     // integrated over the blob
 };
 
-// Whether a code is a frequency code: one cyclic run of 1s and one of 0s.
-bool is_square_wave(const Code& code);
-
 // The codes of a rig, as the identifier compares them.
 struct RigCode {
   Code code;
-  bool frequency = false;                          // a square wave (SPEC.md §8.5)
+  bool frequency = false;                          // a square wave (protocol::is_square_wave, SPEC.md §8.5)
   std::vector<std::pair<size_t, size_t>> markers;  // (target index, marker index) that play it
 };
 // The distinct codes of `targets` (a code's rotations are the same code when

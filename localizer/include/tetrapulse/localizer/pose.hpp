@@ -1,5 +1,5 @@
 #pragma once
-// Rigid poses. Frames and units follow spec/rig-dataset.md: metres, OpenCV camera
+// Rigid poses. Frames and units follow docs/rig-dataset.md: metres, OpenCV camera
 // frame (x right, y down, z forward), and a target pose (R, t) maps target
 // coordinates to camera coordinates:  p_C = R * p_T + t.
 #include <Eigen/Core>

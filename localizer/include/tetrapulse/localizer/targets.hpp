@@ -1,6 +1,6 @@
 #pragma once
 // Target geometry, codes and time base: the contents of a rig dataset's
-// targets.yaml (spec/rig-dataset.md). Positions in metres, target frame.
+// targets.yaml (docs/rig-dataset.md). Positions in metres, target frame.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -9,20 +9,22 @@
 
 #include <Eigen/Core>
 
+#include "tetrapulse/protocol/code.hpp"
+#include "tetrapulse/protocol/timebase.hpp"
+
 namespace tetrapulse {
 
-// A '0'/'1' code played cyclically, bit i = character i. At most 64 bits
-// (the boards' limit, protocol/SPEC.md).
-struct Code {
-  uint64_t bits = 0;     // bit i set = character i is '1'
-  uint32_t length = 0;   // 1..64
+// Codes, modulation and time base are the one model of protocol/model
+// (tetrapulse/protocol/code.hpp, timebase.hpp), under the names the localizer uses.
+using Code = protocol::Code;
+using ModulationKind = protocol::Modulation;
+using Modulation = protocol::ModulationLevels;
+using Timebase = protocol::TimeBase;
 
-  bool bit(uint32_t i) const { return (bits >> (i % length)) & 1u; }
-  std::string str() const;
-  // Parses "1101…"; nullopt with `why` filled on anything else.
-  static std::optional<Code> parse(const std::string& text, std::string* why);
-  bool operator==(const Code& o) const { return bits == o.bits && length == o.length; }
-};
+// A code as text, character i = bit i ("1101..."); "" for no code.
+std::string code_text(const Code& code);
+// Parses "1101…" (1 to 64 characters); nullopt with `why` filled on anything else.
+std::optional<Code> parse_code(const std::string& text, std::string* why);
 
 struct Marker {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
@@ -34,20 +36,9 @@ struct Target {
   std::string name;
   double marker_diameter_m = 0;
   std::array<Marker, 4> markers;
-};
 
-enum class ModulationKind { kOnOff, kTwoLevel, kConstant };
-const char* modulation_kind_name(ModulationKind kind);
-
-struct Modulation {
-  ModulationKind kind = ModulationKind::kOnOff;
-  double low = 0.0;  // relative emission in a 0 bit (two_level only), [0, 1)
-};
-
-struct Timebase {
-  bool synchronized = true;
-  int64_t epoch_ns = 0;
-  int64_t bit_period_ns = 10'000'000;
+  // The four markers' codes as a board carries them (length 0: no code).
+  std::array<Code, 4> codes() const;
 };
 
 struct TargetsFile {

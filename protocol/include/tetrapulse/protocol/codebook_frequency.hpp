@@ -44,7 +44,7 @@ struct FrequencySpec {
   CameraTiming camera;
   int64_t bit_period_ns = 0;        // T; 0: choose from P / k
   uint16_t window_frames = 24;      // W >= 4: apparent frequencies kept 1/W apart
-  uint32_t clock_ppm = 200;         // board clock error bound (spec/rig-dataset.md)
+  uint32_t clock_ppm = 200;         // board clock error bound (docs/rig-dataset.md)
   uint8_t max_dark_frames = 3;      // kNoDarkLimit with two_level
   uint8_t min_swing_percent = 50;   // 1..100
   uint16_t count = 8;               // codes wanted

@@ -6,16 +6,11 @@
 #include <cstdint>
 
 #include "tetrapulse/protocol/bytes.hpp"
+#include "tetrapulse/protocol/code.hpp"  // Code, Modulation: the one code model
 #include "tetrapulse/protocol/limits.hpp"
 #include "tetrapulse/protocol/result.hpp"
 
 namespace tetrapulse::protocol {
-
-enum class Modulation : uint8_t {
-  kOnOff = 0,     // 1 bit: full emission, 0 bit: dark
-  kTwoLevel = 1,  // 1 bit: full emission, 0 bit: low_level
-  kConstant = 2,  // codes ignored, markers lit constantly
-};
 
 enum class SyncSource : uint8_t {
   kNone = 0,  // free-running on the local clock
@@ -34,21 +29,6 @@ enum class GpioEdgeNumbering : uint8_t {
 // Shortest bit period and sync edge interval a board must accept (10 us).
 constexpr uint32_t kMinBitPeriodNs = 10'000;
 constexpr uint32_t kMinGpioEdgePeriodNs = 10'000;
-
-// One marker's code: bit i (LSB first) is character i of the code string "1101...".
-// length 0 means no code: the marker emits constantly.
-struct Code {
-  uint8_t length = 0;  // 0, or 1..kMaxCodeLength
-  uint64_t bits = 0;   // bits at positions >= length are 0
-
-  bool bit(uint32_t i) const { return ((bits >> i) & 1u) != 0; }
-
-  template <class Io, class Self>
-  static void fields(Io& io, Self& m) {
-    io.field("length", m.length);
-    io.field("bits", m.bits);
-  }
-};
 
 // Field order is wire order. The defaults are default_config().
 struct Config {

@@ -14,6 +14,8 @@
 // Freestanding: integer arithmetic only.
 #include <cstdint>
 
+#include "tetrapulse/protocol/code.hpp"  // SquareWave, is_square_wave
+
 namespace tetrapulse::protocol {
 
 // A camera's sampling: frame period P and exposure E, 0 < E <= P.
@@ -22,20 +24,8 @@ struct CameraTiming {
   int64_t exposure_ns = 1'000'000;
 };
 
-struct SquareWave {
-  uint8_t length = 2;  // bits per period, 2..64
-  uint8_t ones = 1;    // 1 bits first, 1..length-1
-};
-
 // One cycle per frame in Q32.
 constexpr uint64_t kCyclePerFrameQ32 = uint64_t{1} << 32;
-
-// The word of a square wave: bits 0..ones-1 set (the string "1..10..0").
-uint64_t square_wave_word(SquareWave wave);
-
-// Whether `word` of `length` bits is a square wave under some rotation: exactly
-// one cyclic run of 1s and one of 0s. Fills *wave (when not null) on success.
-bool is_square_wave(uint64_t word, uint32_t length, SquareWave* wave);
 
 // floor(a * 2^32 / b), for b > 0, b < 2^55 and a < b 2^31 (saturates otherwise).
 uint64_t ratio_q32(uint64_t a, uint64_t b);

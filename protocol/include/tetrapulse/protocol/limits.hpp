@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "tetrapulse/protocol/code.hpp"  // kMaxCodeLength
+
 namespace tetrapulse::protocol {
 
 constexpr uint8_t kProtocolVersion = 1;
@@ -10,8 +12,6 @@ constexpr uint8_t kProtocolVersion = 1;
 constexpr size_t kMaxMessageSize = 320;
 // Largest firmware-update chunk payload.
 constexpr size_t kMaxUpdateChunk = 256;
-// Longest code a board plays (bits).
-constexpr uint32_t kMaxCodeLength = 64;
 // Markers per target.
 constexpr size_t kMarkersPerTarget = 4;
 

@@ -1,6 +1,6 @@
 #pragma once
 // A target board's clock: its notion of rig time, which sets the bit it plays.
-// Times are nanoseconds of rig time (the camera host's clock, spec/rig-dataset.md).
+// Times are nanoseconds of rig time (the camera host's clock, docs/rig-dataset.md).
 //
 // Locked (synchronized, outside sync loss):  b(t) = t + offset_ns
 // Free-running (timebase not synchronized):  b(t) = offset_ns + t (1 + drift_ppm 1e-6)

@@ -1,5 +1,5 @@
 #pragma once
-// The contract's emission model (spec/rig-dataset.md) for the four markers of one
+// The contract's emission model (docs/rig-dataset.md) for the four markers of one
 // target board: at board time b the marker plays bit
 //     floor((b - epoch_ns) / bit_period_ns) mod len(code),
 // a 1 at full intensity, a 0 at `low` (two_level) or dark (on_off); `constant`

@@ -1,5 +1,5 @@
 #pragma once
-// Runs a scenario and writes a rig dataset (spec/rig-dataset.md): camera.yaml,
+// Runs a scenario and writes a rig dataset (docs/rig-dataset.md): camera.yaml,
 // targets.yaml, frames.csv, frames/NNNNNN.png, groundtruth.csv (each target's pose
 // in the camera at mid-exposure, left out while none of its markers is in the
 // image), plus scenario.yaml, the scenario it came from (an extra file the

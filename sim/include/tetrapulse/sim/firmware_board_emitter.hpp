@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "tetrapulse/protocol/config.hpp"
 #include "tetrapulse/sim/led_emitter.hpp"
 #include "tetrapulse/sim/scenario.hpp"
 #include "tetrapulse/sim_board/host_port.hpp"
@@ -35,6 +36,11 @@ struct FirmwareEmitterOptions {
 // host's Board and sync master code instead.
 sim_board::SimBoardOptions firmware_board_options(const Scenario& scenario, size_t index,
                                                   const FirmwareEmitterOptions& options);
+// The configuration the board of target `index` is given: protocol::target_config of the
+// scenario's targets, with the board's own epoch and, for GPIO sync, edge k = frame k's
+// exposure start (numbered from the coarse time of FollowUps, so missed edges do not shift
+// the count).
+protocol::Config firmware_board_config(const Scenario& scenario, size_t index, int64_t power_on_ns);
 // The epoch the board is given, in its own time, so that its b(t) is the contract's (header).
 int64_t firmware_board_epoch_ns(const Scenario& scenario, size_t index, int64_t power_on_ns);
 // GPIO: rig time of the first strobe edge (a second after power-up, on the frame grid); the

@@ -15,7 +15,7 @@ namespace tetrapulse::fw {
 struct LedProgram {
   // length 0: the marker stays at one_duty.
   std::array<protocol::Code, protocol::kMarkersPerTarget> codes{};
-  protocol::TimeBase timebase;
+  protocol::TimeBase timebase{0, 1};  // bit period 1 ns until a configuration or pattern sets it
   std::array<uint16_t, protocol::kMarkersPerTarget> one_duty{};
   std::array<uint16_t, protocol::kMarkersPerTarget> zero_duty{};
 

@@ -3,17 +3,22 @@
 //
 // Bit n of every code occupies rig times  [epoch + n*T, epoch + (n+1)*T),
 // n in Z (negative before the epoch); a code of length L plays bit n mod L.
-// (spec/rig-dataset.md: bit index = floor((t - epoch) / T) mod L.)
+// (docs/rig-dataset.md: bit index = floor((t - epoch) / T) mod L.)
 // Domain: T > 0 and |t - epoch| < 2^62 ns (about 146 years).
 #include <cstdint>
 
 namespace tetrapulse::protocol {
 
+// The one time base of codes (the boards', the localizer's, the simulator's and
+// targets.yaml's `timebase`).
 struct TimeBase {
-  int64_t epoch_ns = 0;          // rig time at which bit 0 starts
-  int64_t bit_period_ns = 1;     // T, length of one bit, > 0
+  int64_t epoch_ns = 0;                // rig time at which bit 0 starts
+  int64_t bit_period_ns = 10'000'000;  // T, length of one bit, > 0
+  // Whether the boards are disciplined to rig time (GPIO or CAN sync). When false
+  // they run free: epoch and rate are each board's own, found by the localizer.
+  bool synchronized = true;
 
-  bool valid() const { return bit_period_ns > 0; }
+  constexpr bool valid() const { return bit_period_ns > 0; }
 };
 
 // floor(a / b) for b > 0.
