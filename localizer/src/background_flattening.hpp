@@ -16,6 +16,7 @@
 //   - clipped pixels keep their value, so that saturation is still seen.
 // Blob intensities (value - background) are then measured against the local
 // background; positions are unchanged.
+#include <cstdint>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
@@ -32,11 +33,15 @@ class BackgroundFlattening {
 
  private:
   static constexpr int kFineCell = 16, kCoarseCell = 64;
-  // The map of `cell`-sized cells, at every pixel of `work` (CV_32F).
-  void cell_map(const cv::Mat& work, int cell, cv::Mat* out);
+  // The levels of `cell`-sized cells of `work`, one more extrapolated on every
+  // side (padded_, CV_32F); then the map at every pixel of `work` (CV_32F).
+  void cell_levels(const cv::Mat& work, int cell);
+  void upsample(const cv::Mat& work, int cell, cv::Mat* out);
 
   cv::Mat cells_, padded_, scaled_, coarse_, fine_, out_;
   std::vector<int> values_;
+  std::vector<float> levels_[3];
+  std::vector<uint16_t> bins_;
   bool flattened_ = false;
 };
 
