@@ -67,7 +67,7 @@ void BM_LocalizerFullFrameTargets(benchmark::State& state) {
   absent.id = 999;
   // The search's last four codes, which no scene uses (they use the first 4 N <= 256).
   for (size_t m = 0; m < absent.markers.size(); ++m)
-    absent.markers[m].code = Code::parse(bench::scale_codes()[256 + m], nullptr);
+    absent.markers[m].code = *parse_code(bench::scale_codes()[256 + m], nullptr);
   targets.targets.push_back(absent);
   LocalizerOptions options;
   options.full_search_interval = 1;

@@ -102,6 +102,9 @@ Blob RegionSums::blob() const {
   const double root = std::sqrt(0.25 * (cxx - cyy) * (cxx - cyy) + cxy * cxy);
   const double big = half_sum + root, small = std::max(0.0, half_sum - root);
   b.eccentricity = big > 0 ? std::sqrt(std::max(0.0, 1.0 - small / big)) : 0.0;
+  // Major axis within 15 degrees of y: 2 theta within 30 degrees of 180.
+  constexpr double kTan30 = 0.57735026918962573;
+  b.bloomed = saturated && cyy > cxx && 2 * std::abs(cxy) <= kTan30 * (cyy - cxx);
   b.convexity = hull_area > 0 ? std::min(1.0, n / hull_area) : 1.0;
   return b;
 }
@@ -120,7 +123,7 @@ void classify(const BlobExtractorConfig& config, Region* region) {
   } else if (judge_shape && b.convexity < config.min_convexity) {
     region->reason = RejectReason::kNonConvex;
     region->reason_value = b.convexity;
-  } else if (judge_shape && b.eccentricity > config.max_eccentricity) {
+  } else if (judge_shape && b.eccentricity > config.max_eccentricity && !b.bloomed) {
     region->reason = RejectReason::kEccentric;
     region->reason_value = b.eccentricity;
   } else {
@@ -302,6 +305,8 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
   const int x0 = std::max(min_x - 1, wx0), x1 = std::min(max_x + 1, wx1);
   // Moments of pixel centres are sums of integers: exact in int64, summed per row.
   int64_t sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+  double top = -1;  // the region's brightest value and how many pixels hold it
+  int top_n = 0;
   for (int y = std::max(min_y - 1, wy0); y <= std::min(max_y + 1, wy1); ++y) {
     const T* row = work.ptr<T>(y);
     const int32_t* here = labels_.data() + size_t(y) * width;
@@ -322,6 +327,8 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
         s.wy += d * y;
         s.peak = std::max(s.peak, d);
         s.saturated = s.saturated || v >= levels.saturation;
+        top_n = v > top ? 1 : top_n + (v == top);
+        top = std::max(top, v);
         row_min = std::min(row_min, x);
         row_max = x;
         continue;
@@ -348,6 +355,7 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
       row_max_[size_t(y - min_y)] = row_max;
     }
   }
+  s.saturated = s.saturated || (top_n >= Levels::kFlatTopPixels && top >= levels.flat_top_floor);
   s.sx = double(sx);
   s.sy = double(sy);
   s.sxx = double(sxx);

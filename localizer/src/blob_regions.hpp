@@ -21,6 +21,12 @@ struct Levels {
   double f1 = 0;          // regions grow from values above f1 ...
   double f2 = 0;          // ... over values above f2
   double saturation = 0;  // values at or above it are clipped
+  // A sensor often clips below the type's maximum (full well reached before the
+  // ADC's top code, or a black level and gain that cap it at 250): a region whose
+  // brightest value is shared by kFlatTopPixels pixels or more, at or above this
+  // level, is clipped too. Shot noise keeps an unclipped top from being flat.
+  double flat_top_floor = 0;
+  static constexpr int kFlatTopPixels = 4;
   double reported_background = 0;  // `background` in the input image's grey levels
 };
 

@@ -37,6 +37,8 @@ Window WindowPass::prepare(const cv::Mat& image, cv::Rect rect, BlobExtraction* 
   lv.f2 = lv.background + config_.f2_sigmas * lv.sigma;
   lv.f1 = std::max({histogram_.otsu(), lv.background + config_.f1_min_sigmas * lv.sigma, lv.f2});
   lv.saturation = saturation;
+  // 8-bit sensors clip at 240-255; deeper containers may hold 10-16 bits unshifted.
+  lv.flat_top_floor = w.work->depth() == CV_8U ? 0.75 * 255 : lv.f1;
   lv.reported_background = to_input(lv.background, image, config_);
   WindowThresholds t;
   t.window = rect;

@@ -111,6 +111,33 @@ TEST(BlobExtractor, FlagsSaturatedBlobs) {
   EXPECT_NEAR(out.blobs[0].centroid.x(), 30.4, 0.05);
 }
 
+// A sensor that clips below the type's top code (here at 250): the flat top says
+// saturated; a streak of such light drawn out along the columns (blooming) is
+// one marker, centred on its spot.
+TEST(BlobExtractor, FlagsFlatToppedAndBloomedBlobsBelowTheTopCode) {
+  auto img = canvas(64, 96, 25);
+  add_disc(&img, {30.4, 47.6}, 4, 400);
+  cv::Mat clipped = quantise(img, CV_8U);
+  cv::min(clipped, 250, clipped);
+  auto out = extract(clipped, 1);
+  ASSERT_EQ(out.blobs.size(), 1u);
+  EXPECT_TRUE(out.blobs[0].saturated);
+  EXPECT_FALSE(out.blobs[0].bloomed);
+  // Spill 12 rows up and down the disc's columns.
+  for (int x = 0; x < clipped.cols; ++x) {
+    int top = -1, bottom = -1;
+    for (int y = 0; y < clipped.rows; ++y)
+      if (clipped.at<uint8_t>(y, x) == 250) bottom = y, top = top < 0 ? y : top;
+    for (int d = 1; top >= 0 && d <= 12; ++d) clipped.at<uint8_t>(top - d, x) = clipped.at<uint8_t>(bottom + d, x) = 250;
+  }
+  out = extract(clipped, 1);
+  ASSERT_EQ(out.blobs.size(), 1u) << "the streak is one marker, not rejected as eccentric";
+  EXPECT_TRUE(out.blobs[0].bloomed);
+  EXPECT_GT(out.blobs[0].eccentricity, 0.8);
+  EXPECT_NEAR(out.blobs[0].centroid.x(), 30.4, 0.3);
+  EXPECT_NEAR(out.blobs[0].centroid.y(), 47.6, 0.6);
+}
+
 // 16 spots on a VGA-sized frame with read noise: all found, nothing else.
 TEST(BlobExtractor, FindsSixteenSpotsInNoiseWithoutFalsePositives) {
   std::mt19937 rng(11);

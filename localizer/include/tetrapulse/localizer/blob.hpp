@@ -42,6 +42,12 @@ struct Blob {
   double convexity = 1;     // area / area of the convex hull of the pixel squares; 1 = convex
   cv::Rect bbox;            // pixels above F2
   bool saturated = false;   // some pixel reached the saturation level: intensity is a lower bound
+  // Saturated and drawn out along the sensor's columns (major axis within 15
+  // degrees of the image's y axis): a sensor's blooming, charge over the full well
+  // spilling up and down the column. Such a streak is a marker (its eccentricity
+  // is not held against it); its centroid stays on the spot's centre, the spill
+  // being symmetric, and its length grows with the light.
+  bool bloomed = false;
   bool clipped = false;     // touches the image border or the edge of the searched window
   // Its light was shared with another marker's (kPredictionSplit): the centroid
   // is biased towards the other and the intensity holds some of its light.
