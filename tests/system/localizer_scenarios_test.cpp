@@ -40,6 +40,23 @@ const Acceptance kScenarios[] = {
     {"agile-sat", INFINITY, INFINITY, 0.99},
 };
 
+// Matrix rows that do not meet the acceptance lines yet (issue 14 is open on them):
+// each is run at CI size and held to what it reaches today, so a change that makes
+// one worse fails here; a row that meets the lines moves up into kScenarios.
+struct OpenRow {
+  const char* scenario;
+  double min_coverage;       // today's coverage, rounded down
+  size_t max_misidentified;  // today's count
+  const char* open;          // which acceptance line it misses
+};
+
+const OpenRow kOpenRows[] = {
+    {"sat-bloom", 0.82, 0, "coverage 82.8 % (bound 99 %): bloomed streaks merge markers"},
+    {"sat-landing", 0.71, 0, "coverage 71.2 % (bound 99 %): saturated discs at 0.12 m"},
+    {"crowd", 0.98, 0, "coverage 98.6 %, identification latency 27 frames (bound 12)"},
+    {"crowd-on-off", 0.99, 19, "19 misidentified poses (bound 0), latency 39 frames"},
+};
+
 // Frequency codes (square waves, protocol/SPEC.md 8.5) are seen at their apparent
 // frequency nu = dist(P / C, Z) cycles per frame; issue 8 bounds their identification by
 // two of the rig's longest apparent periods, 2 / min(nu) frames. 0: no frequency codes.
@@ -135,6 +152,35 @@ INSTANTIATE_TEST_SUITE_P(Builtin, Scenarios, ::testing::ValuesIn(kScenarios),
                            return name;
                          });
 
+void PrintTo(const OpenRow& r, std::ostream* os) { *os << r.scenario; }
+
+class OpenScenarios : public ::testing::TestWithParam<OpenRow> {};
+
+TEST_P(OpenScenarios, HoldWhatTheyReachToday) {
+  const OpenRow& r = GetParam();
+  auto scenario = sim::load_scenario(r.scenario);
+  ASSERT_TRUE(scenario) << scenario.error().what();
+  const auto run = run_scenario(*scenario, scenario->seed, scenario->frames.ci_count);
+  ASSERT_TRUE(run) << run.error();
+  const TargetEvaluation& all = run->evaluation.overall;
+  std::printf("%s (open: %s): %zu frames, %zu poses; mean error %.2f mm / %.3f deg; coverage %.4f (%zu of %zu); "
+              "misidentified %zu; max latency %lld frames\n",
+              r.scenario, r.open, run->frames.size(), all.rows, 1e3 * all.position_m.mean,
+              all.orientation_rad.mean / kDeg, all.coverage(), all.covered_frames, all.visible_frames,
+              all.misidentified, (long long)all.max_latency_frames);
+  EXPECT_GT(all.visible_frames_total, 0u) << "no target visible: the scenario tests nothing";
+  EXPECT_GE(all.coverage(), r.min_coverage);
+  EXPECT_LE(all.misidentified, r.max_misidentified);
+}
+
+INSTANTIATE_TEST_SUITE_P(Open, OpenScenarios, ::testing::ValuesIn(kOpenRows),
+                         [](const ::testing::TestParamInfo<OpenRow>& param) {
+                           std::string name = param.param.scenario;
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
+
 TEST(Scenarios, PaperExp1WithKalmanPredictionAndKneipP3P) {
   // The options beside the defaults: the constant-velocity Kalman filter and the
   // paper's P3P solver (Kneip 2011) hold the same lines as the defaults.
@@ -191,7 +237,11 @@ TEST(Scenarios, EveryBuiltinIsCovered) {
   for (const sim::BuiltinScenario& b : sim::builtin_scenarios()) {
     bool found = false;
     for (const Acceptance& a : kScenarios) found = found || b.name == a.scenario;
-    EXPECT_TRUE(found) << b.name;
+    for (const OpenRow& r : kOpenRows) {
+      EXPECT_FALSE(found && b.name == r.scenario) << b.name << " is both accepted and open";
+      found = found || b.name == r.scenario;
+    }
+    EXPECT_TRUE(found) << b.name << ": neither in kScenarios nor in kOpenRows";
   }
 }
 
