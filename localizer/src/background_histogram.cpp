@@ -93,12 +93,19 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
   }
 }
 
-BackgroundFit BackgroundHistogram::fit_background() const {
+BackgroundFit BackgroundHistogram::fit_background(double saturation) const {
   BackgroundFit fit;
   if (total_ == 0) return fit;
   const int n = used_;
+  int top = n - 1;
+  while (top > 0 && bins_[top] == 0) --top;
+  int below = top - 1;
+  while (below >= 0 && bins_[below] == 0) --below;
+  const bool clipped_top = below >= 0 && (bin_centre(top) >= saturation - 0.5 * bin_width() ||
+                                          (bins_[top] >= 4 && bins_[top] >= 4 * bins_[below]));
+  const int mode_end = clipped_top ? below + 1 : n;
   int mode = 0;
-  for (int b = 1; b < n; ++b)
+  for (int b = 1; b < mode_end; ++b)
     if (bins_[b] > bins_[mode]) mode = b;
   // Initial sigma from the full width at half maximum.
   const double half = bins_[mode] * 0.5;

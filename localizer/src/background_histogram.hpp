@@ -22,8 +22,13 @@ class BackgroundHistogram {
   // Gaussian fitted to the background peak: starts at the histogram's mode with
   // sigma from its half-maximum width, then re-estimates mean and sigma from
   // the bins within 3 sigma (truncation and bin-width corrected) until stable.
-  // The foreground, far in one tail, does not enter.
-  BackgroundFit fit_background() const;
+  // The foreground, far in one tail, does not enter. Nor do clipped pixels: a
+  // saturated marker larger than the background's share of the window piles up
+  // in one bin, the tallest, yet it is no background. The mode is sought below
+  // that pile-up: the top occupied bin when its values reach `saturation` (grey
+  // levels), or when it holds at least 4 pixels and 4x the next occupied bin
+  // below (a sensor that clips under the type's top code).
+  BackgroundFit fit_background(double saturation) const;
 
   // Otsu's threshold: values above it form the brighter class; -1 when the
   // window holds a single value.

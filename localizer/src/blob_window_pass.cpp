@@ -30,7 +30,7 @@ Window WindowPass::prepare(const cv::Mat& image, cv::Rect rect, BlobExtraction* 
   const double saturation = inverted || config_.saturation_level <= 0 ? top : config_.saturation_level;
   if (flatten) w.work = &flattening_.apply(*w.work, saturation);
   histogram_.count(*w.work, rect);
-  const BackgroundFit fit = histogram_.fit_background();
+  const BackgroundFit fit = histogram_.fit_background(saturation);
   Levels& lv = w.levels;
   lv.background = fit.mean;
   lv.sigma = std::max({fit.sigma, config_.min_background_sigma, 0.5 * histogram_.bin_width()});

@@ -49,10 +49,10 @@ struct Thresholds {
 // camera whose response is not linear (gamma-encoded video). Only the order of
 // intensities survives such a response, so the levels are learned from the
 // window's detected samples themselves, on y = log(intensity) with a common
-// linear drift (the marker closing in or turning away):
-//   y_k = a + b (k - centre) + c bit_k,
+// smooth drift (the marker closing in or turning away):
+//   y_k = a + b x_k + q x_k^2 + c bit_k,   x_k = k - centre,
 // fitted by least squares, alternating with the bits: the widest gap between
-// the sorted detrended values y_k - b (k - centre) splits 0s from 1s. The split
+// the sorted detrended values y_k - b x_k - q x_k^2 splits 0s from 1s. The split
 // holds when that gap is
 // - at least log kMinContrast (a saturated 1 still gains a ring of pixels over its 0),
 // - at least twice the spread of the values on either side (a drift the line
@@ -60,12 +60,16 @@ struct Thresholds {
 // - with two samples or more on each side (one odd sample is no level).
 struct LearnedLevels {
   double one = 0;    // detrended log level of the 1s
-  double slope = 0;  // b, per sample
+  double slope = 0;      // b, per sample
+  double curvature = 0;  // q, per sample^2
   double centre = 0;
   BitSplit split;    // ratios to the 1 level: the gap's middle, its band the middle half of the gap
   double zero = 0;   // the brightest 0 as a ratio to the 1 level
 
-  double bright(size_t k) const { return std::exp(one + slope * (double(k) - centre)); }
+  double bright(size_t k) const {
+    const double x = double(k) - centre;
+    return std::exp(one + slope * x + curvature * x * x);
+  }
 };
 
 constexpr double kMinContrast = 1.04;
@@ -82,6 +86,27 @@ bool widest_gap(const std::array<double, kTrackHistory>& d, size_t n, std::array
   return widest >= 0;
 }
 
+// Least squares of y = a + b x + q x^2 (+ c bit, when `one` is given): the
+// drift's (b, q).
+bool fit_drift(const std::array<double, kTrackHistory>& x, const std::array<double, kTrackHistory>& y,
+               const std::array<bool, kTrackHistory>* one, size_t n, double* b, double* q) {
+  cv::Matx44d A = cv::Matx44d::zeros();
+  cv::Vec4d r = cv::Vec4d::all(0), coef;
+  const int k = one ? 4 : 3;
+  for (size_t i = 0; i < n; ++i) {
+    const double f[4] = {1, x[i], x[i] * x[i], one && (*one)[i] ? 1.0 : 0.0};
+    for (int u = 0; u < k; ++u) {
+      r[u] += f[u] * y[i];
+      for (int v = 0; v < k; ++v) A(u, v) += f[u] * f[v];
+    }
+  }
+  if (k == 3) A(3, 3) = 1;
+  if (!cv::solve(A, r, coef, cv::DECOMP_LU)) return false;
+  *b = coef[1];
+  *q = coef[2];
+  return true;
+}
+
 bool learn_levels(const SampleLevels& h, size_t begin, size_t end, LearnedLevels* out) {
   std::array<double, kTrackHistory> x{}, y{}, d{}, sorted{};
   std::array<bool, kTrackHistory> one{};
@@ -90,15 +115,15 @@ bool learn_levels(const SampleLevels& h, size_t begin, size_t end, LearnedLevels
   for (size_t k = begin; k < end; ++k)
     if (h.measured[k] && h.detected[k] && h.intensity[k] > 0) x[n] = double(k) - centre, y[n++] = std::log(h.intensity[k]);
   if (n < 4) return false;
-  // The drift first, from a line through all of them (the code's steps, spread
-  // over the window, hardly tilt it); then the bits and the drift in turn.
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (size_t i = 0; i < n; ++i) sx += x[i], sy += y[i], sxx += x[i] * x[i], sxy += x[i] * y[i];
-  const double det = double(n) * sxx - sx * sx;
-  double b = det > 0 ? (double(n) * sxy - sx * sy) / det : 0, threshold = 0;
+  // The drift first, from a parabola through all of them (the code's steps,
+  // spread over the window, hardly bend it); then the bits and the drift in
+  // turn. A parabola, not a line: light grows as 1 / distance^2, and a marker
+  // closing in at constant speed brightens ever faster.
+  double b = 0, q = 0, threshold = 0;
+  if (n < 6 || !fit_drift(x, y, nullptr, n, &b, &q)) q = 0;
   size_t gap = 0;
   for (int pass = 0; pass < 4; ++pass) {
-    for (size_t i = 0; i < n; ++i) d[i] = y[i] - b * x[i];
+    for (size_t i = 0; i < n; ++i) d[i] = y[i] - b * x[i] - q * x[i] * x[i];
     if (!widest_gap(d, n, &sorted, &gap)) return false;
     threshold = 0.5 * (sorted[gap] + sorted[gap + 1]);
     bool changed = pass == 0;
@@ -108,16 +133,8 @@ bool learn_levels(const SampleLevels& h, size_t begin, size_t end, LearnedLevels
       one[i] = is_one;
     }
     if (!changed) break;
-    // Least squares of y = a + b x + c bit: the normal equations, solved for b.
-    double sb = 0, sxb = 0, sby = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const double bi = one[i] ? 1 : 0;
-      sb += bi, sxb += x[i] * bi, sby += bi * y[i];
-    }
-    cv::Matx33d A(double(n), sx, sb, sx, sxx, sxb, sb, sxb, sb);
-    cv::Vec3d r(sy, sxy, sby), abc;
-    if (!cv::solve(A, r, abc, cv::DECOMP_LU)) return false;
-    b = abc[1];
+    if (!fit_drift(x, y, &one, n, &b, &q)) return false;
+    if (n < 6) q = 0;
   }
   const double low = sorted[gap], high = sorted[gap + 1], widest = high - low;
   const double spread = std::max(low - sorted[0], sorted[n - 1] - high);
@@ -128,6 +145,7 @@ bool learn_levels(const SampleLevels& h, size_t begin, size_t end, LearnedLevels
     if (d[i] > threshold) ones += d[i], ++count;
   out->one = ones / count;
   out->slope = b;
+  out->curvature = q;
   out->centre = centre;
   const double lo = std::exp(low + widest / 4 - out->one), hi = std::exp(high - widest / 4 - out->one);
   out->split.mid = 0.5 * (lo + hi);

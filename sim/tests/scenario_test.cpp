@@ -28,7 +28,8 @@ TEST(BuiltinScenarios, AllExistAndParse) {
   const std::set<std::string> expected = {"paper-exp1", "paper-far", "swarm",      "unsync",     "passive",
                                           "clutter",    "fisheye",   "frequency",  "agile",      "distortion",
                                           "beam-spread", "dropouts",  "sat-exp1-5x", "sat-exp1-20x", "sat-landing",
-                                          "sat-clutter", "sat-fisheye", "agile-sat",  "crowd",      "crowd-on-off", "sat-bloom"};
+                                          "sat-clutter", "sat-fisheye", "agile-sat",  "crowd",      "crowd-on-off", "sat-bloom",
+                                          "sat-passive"};
   std::set<std::string> names;
   for (const BuiltinScenario& b : builtin_scenarios()) {
     names.insert(b.name);

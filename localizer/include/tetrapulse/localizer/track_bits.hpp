@@ -22,7 +22,7 @@
 // intensities splits 0s from 1s when it is at least a ratio of 1.04, at least
 // twice the spread on either side, with two samples or more on each side (a
 // drifting level spreads values evenly, a code splits them into two tight
-// groups), after a common drift of the logarithms (a line fitted with the
+// groups), after a common drift of the logarithms (a parabola fitted with the
 // bits) is taken out; mid is then the gap's middle and band a quarter of it.
 // A window with a saturated sample reads this way when it can; one whose 0s
 // the nominal levels cannot read (or leave unknown) too.
