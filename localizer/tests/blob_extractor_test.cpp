@@ -429,6 +429,31 @@ TEST(BlobExtractor, FindsMarkersOnABackgroundThatIsNotFlat) {
   }
 }
 
+TEST(BlobExtractor, RoiWindowFilledByAClippedDiscKeepsItsBackground) {
+  // A marker at close range: a disc 15 px in radius clipped at 252 (an 8-bit
+  // sensor's full well under the top code) fills 40 % of its ROI's 47 x 47 window,
+  // more than any one grey level of the noisy background holds. The background
+  // comes from below the clipped pile-up, not from it: the disc is detected,
+  // centred, and its intensity is its light over a background of about 8.
+  auto img = canvas(120, 120, 8);
+  const Eigen::Vector2d c(60.3, 59.6);
+  add_disc(&img, c, 15, 2500);
+  add_noise(&img, 1.0, 5);
+  cv::Mat clipped = quantise(img, CV_8U);
+  cv::min(clipped, 252, clipped);
+  BlobExtractor extractor;
+  BlobExtraction out;
+  ASSERT_TRUE(extractor.extract(clipped, {roi(c + Eigen::Vector2d(2.0, -1.5), 3, 6, 17.5)}, &out));
+  ASSERT_EQ(out.rois.size(), 1u);
+  ASSERT_EQ(out.rois[0].status, RoiStatus::kDetected);
+  EXPECT_TRUE(out.rois[0].blob.saturated);
+  EXPECT_LT((out.rois[0].position - c).norm(), 0.1);
+  ASSERT_EQ(out.windows.size(), 1u);
+  EXPECT_NEAR(out.windows[0].background, 8, 1);
+  const double disc = M_PI * 15 * 15 * (252 - 8);
+  EXPECT_NEAR(out.rois[0].intensity, disc, 0.08 * disc);
+}
+
 TEST(BlobExtractor, RoiModeMeasuresPresentDimAndAbsentMarkers) {
   auto img = canvas(200, 160, 25);
   const Eigen::Vector2d on(50.3, 40.7), dim(140.6, 45.2), off(60.2, 120.4), far(150.1, 130.3);

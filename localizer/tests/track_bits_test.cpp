@@ -139,6 +139,26 @@ TEST(TrackBits, SaturatedTwoLevelFollowsAMarkerClosingIn) {
   EXPECT_LE(unknown, 2) << got;
 }
 
+// A drone landing: 1.2 m to 0.36 m at constant speed over 60 frames, 11 times
+// brighter and ever faster (7 % a frame at the end).
+double landing(int k) {
+  const double d = 1.2 - 0.84 * k / 59.0;
+  return 5000 / (d * d);
+}
+// A large clipped disc: its 0.3 level reads only 0.95 of its 1.
+double barely_clipped(double r) { return 1 + 0.042 * std::log(std::max(r, 1e-3)); }
+
+TEST(TrackBits, SaturatedTwoLevelFollowsALightGrowingEverFaster) {
+  // Under the drift of a line, the window's curvature (a few % over 17 samples)
+  // is as large as the code's contrast; under a parabola it is gone.
+  const Modulation m{ModulationKind::kTwoLevel, 0.3};
+  const std::string got = read(compressed(kBits, 0.3, landing, 0.003, 15, barely_clipped, true), m);
+  int wrong = 0, unknown = 0;
+  for (size_t i = 0; i < kBits.size(); ++i) wrong += got[i] != '?' && got[i] != kBits[i], unknown += got[i] == '?';
+  EXPECT_EQ(wrong, 0) << got;
+  EXPECT_LE(unknown, 4) << got;
+}
+
 TEST(TrackBits, GammaEncodedTwoLevelIsRead) {
   // 0.3 reads 0.58 of a 1, inside the nominal levels' unknown band.
   const Modulation m{ModulationKind::kTwoLevel, 0.3};
