@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
-#include "tetrapulse/protocol/codebook.hpp"
-#include "tetrapulse/protocol/codebook_workspace.hpp"
+#include "tetrapulse/codebook/codebook.hpp"
+#include "tetrapulse/codebook/codebook_workspace.hpp"
 
 namespace tetrapulse::protocol {
 namespace {

@@ -30,6 +30,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "four_targets_sequence.hpp"
+#include "localizer_frame_timing.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
 
 namespace {
@@ -41,35 +42,11 @@ using bench::Sequence;
 const Sequence& sequence() { return bench::four_targets_sequence(); }
 
 // Runs frames [from, to) through `localizer`.
-void feed(Localizer* localizer, int from, int to) {
-  const Sequence& s = sequence();
-  for (int k = from; k < to; ++k) benchmark::DoNotOptimize(localizer->process(s.images[size_t(k)], s.starts[size_t(k)], s.exposure_ns));
-}
+void feed(Localizer* localizer, int from, int to) { bench::feed(localizer, sequence(), from, to); }
 
-// Times one frame per iteration from frame `warm_up` on, restarting the
-// localizer (untimed) at the end of the sequence.
+// Times one frame per iteration from frame `warm_up` on (localizer_frame_timing.hpp).
 void time_frames(benchmark::State& state, const TargetsFile& targets, const LocalizerOptions& options, int warm_up) {
-  cv::setNumThreads(1);
-  const Sequence& s = sequence();
-  auto localizer = std::make_unique<Localizer>(s.scenario.camera, targets, options);
-  feed(localizer.get(), 0, warm_up);
-  int k = warm_up;
-  int64_t poses = 0, searched = 0;
-  for (auto _ : state) {
-    if (k == kFrames) {
-      state.PauseTiming();
-      localizer = std::make_unique<Localizer>(s.scenario.camera, targets, options);
-      feed(localizer.get(), 0, warm_up);
-      k = warm_up;
-      state.ResumeTiming();
-    }
-    auto out = localizer->process(s.images[size_t(k)], s.starts[size_t(k)], s.exposure_ns);
-    poses += out ? int64_t(out->size()) : 0;
-    searched += localizer->searched_whole_image();
-    ++k;
-  }
-  state.counters["poses_per_frame"] = double(poses) / double(state.iterations());
-  state.counters["whole_image_share"] = double(searched) / double(state.iterations());
+  bench::time_frames(state, sequence(), targets, options, warm_up);
 }
 
 // Full frame: the scene's targets and one that never shows, searched for every frame.

@@ -14,6 +14,7 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include "localizer_frame_timing.hpp"
 #include "scale_targets_sequence.hpp"
 #include "tetrapulse/localizer/localizer.hpp"
 
@@ -24,34 +25,10 @@ using bench::Sequence;
 
 constexpr int kWarmUp = 40;
 
-void feed(Localizer* localizer, const Sequence& s, int from, int to) {
-  for (int k = from; k < to; ++k)
-    benchmark::DoNotOptimize(localizer->process(s.images[size_t(k)], s.starts[size_t(k)], s.exposure_ns));
-}
-
+// One frame per iteration after kWarmUp untimed ones (localizer_frame_timing.hpp).
 void time_frames(benchmark::State& state, const Sequence& s, const TargetsFile& targets,
                  const LocalizerOptions& options) {
-  cv::setNumThreads(1);
-  const int frames = int(s.images.size());
-  auto localizer = std::make_unique<Localizer>(s.scenario.camera, targets, options);
-  feed(localizer.get(), s, 0, kWarmUp);
-  int k = kWarmUp;
-  int64_t poses = 0, searched = 0;
-  for (auto _ : state) {
-    if (k == frames) {
-      state.PauseTiming();
-      localizer = std::make_unique<Localizer>(s.scenario.camera, targets, options);
-      feed(localizer.get(), s, 0, kWarmUp);
-      k = kWarmUp;
-      state.ResumeTiming();
-    }
-    auto out = localizer->process(s.images[size_t(k)], s.starts[size_t(k)], s.exposure_ns);
-    poses += out ? int64_t(out->size()) : 0;
-    searched += localizer->searched_whole_image();
-    ++k;
-  }
-  state.counters["poses_per_frame"] = double(poses) / double(state.iterations());
-  state.counters["whole_image_share"] = double(searched) / double(state.iterations());
+  bench::time_frames(state, s, targets, options, kWarmUp);
 }
 
 void BM_LocalizerTrackingTargets(benchmark::State& state) {

@@ -15,8 +15,8 @@
 #include <opencv2/core/mat.hpp>
 
 #include "four_targets_sequence.hpp"
-#include "tetrapulse/protocol/codebook.hpp"
-#include "tetrapulse/protocol/codebook_workspace.hpp"
+#include "tetrapulse/codebook/codebook.hpp"
+#include "tetrapulse/codebook/codebook_workspace.hpp"
 
 namespace tetrapulse::bench {
 

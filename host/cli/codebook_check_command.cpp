@@ -15,8 +15,8 @@
 #include "exit_codes.hpp"
 #include "frequency_codebook_check.hpp"
 #include "tetrapulse/datasets/dataset_io.hpp"
-#include "tetrapulse/protocol/codebook_word.hpp"
-#include "tetrapulse/protocol/frequency_code.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
+#include "tetrapulse/codebook/frequency_code.hpp"
 #include "tetrapulse/protocol/limits.hpp"
 
 namespace tetrapulse::cli {

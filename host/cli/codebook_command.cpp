@@ -24,8 +24,8 @@
 #include "tetrapulse/host/config_text.hpp"
 #include "tetrapulse/host/target_board_config.hpp"
 #include "tetrapulse/protocol/can_id.hpp"
-#include "tetrapulse/protocol/codebook.hpp"
-#include "tetrapulse/protocol/codebook_workspace.hpp"
+#include "tetrapulse/codebook/codebook.hpp"
+#include "tetrapulse/codebook/codebook_workspace.hpp"
 #include "tetrapulse/protocol/limits.hpp"
 
 namespace tetrapulse::cli {

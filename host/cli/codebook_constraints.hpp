@@ -10,7 +10,7 @@
 #include <tl/expected.hpp>
 
 #include "tetrapulse/localizer/targets.hpp"
-#include "tetrapulse/protocol/codebook.hpp"
+#include "tetrapulse/codebook/codebook.hpp"
 
 namespace tetrapulse::cli {
 

@@ -18,7 +18,7 @@
 #include "json_text.hpp"
 #include "tetrapulse/host/board_config_yaml.hpp"
 #include "tetrapulse/host/config_text.hpp"
-#include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
 #include "tetrapulse/protocol/pwm_code.hpp"
 
 namespace tetrapulse::cli {

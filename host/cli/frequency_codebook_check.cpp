@@ -7,8 +7,8 @@
 
 #include "codebook_constraints.hpp"
 #include "exit_codes.hpp"
-#include "tetrapulse/protocol/codebook_word.hpp"
-#include "tetrapulse/protocol/frequency_code.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
+#include "tetrapulse/codebook/frequency_code.hpp"
 
 namespace tetrapulse::cli {
 namespace {

@@ -11,7 +11,7 @@
 #include <tl/expected.hpp>
 
 #include "tetrapulse/localizer/targets.hpp"
-#include "tetrapulse/protocol/codebook_frequency.hpp"
+#include "tetrapulse/codebook/codebook_frequency.hpp"
 
 namespace tetrapulse::cli {
 

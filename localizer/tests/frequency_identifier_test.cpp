@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "tetrapulse/protocol/codebook_frequency.hpp"
+#include "tetrapulse/codebook/codebook_frequency.hpp"
 
 namespace tetrapulse {
 namespace {

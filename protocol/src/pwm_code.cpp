@@ -1,6 +1,6 @@
 #include "tetrapulse/protocol/pwm_code.hpp"
 
-#include "tetrapulse/protocol/frequency_code.hpp"
+#include "tetrapulse/protocol/code.hpp"  // SquareWave, square_wave_word
 
 namespace tetrapulse::protocol {
 

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "tetrapulse/protocol/frequency_code.hpp"
+#include "tetrapulse/protocol/code.hpp"  // is_square_wave
 
 namespace tetrapulse::protocol {
 namespace {

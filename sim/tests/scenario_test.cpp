@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "tetrapulse/datasets/dataset_io.hpp"
-#include "tetrapulse/protocol/codebook_frequency.hpp"
+#include "tetrapulse/codebook/codebook_frequency.hpp"
 #include "tetrapulse/sim/builtin_scenarios.hpp"
 #include "tetrapulse/sim/scenario_yaml.hpp"
 

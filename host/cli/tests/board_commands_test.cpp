@@ -14,7 +14,7 @@
 #include "tetrapulse/host/board.hpp"
 #include "tetrapulse/host/config_text.hpp"
 #include "tetrapulse/host/sim_board_link.hpp"
-#include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
 #include "tetrapulse/protocol/pwm_code.hpp"
 #include "tetrapulse/sim_board/sim_image.hpp"
 #include "test_images.hpp"

@@ -13,8 +13,8 @@
 
 #include "exit_codes.hpp"
 #include "tetrapulse/datasets/dataset_io.hpp"
-#include "tetrapulse/protocol/codebook.hpp"
-#include "tetrapulse/protocol/codebook_frequency.hpp"
+#include "tetrapulse/codebook/codebook.hpp"
+#include "tetrapulse/codebook/codebook_frequency.hpp"
 
 namespace tetrapulse::cli {
 namespace {

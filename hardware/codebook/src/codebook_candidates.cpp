@@ -2,7 +2,7 @@
 #include <algorithm>
 
 #include "codebook_search.hpp"
-#include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
 
 namespace tetrapulse::protocol {
 namespace {

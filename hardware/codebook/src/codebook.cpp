@@ -1,10 +1,10 @@
 // generate() and find_largest(): the codebook search end to end (SPEC.md §8).
-#include "tetrapulse/protocol/codebook.hpp"
+#include "tetrapulse/codebook/codebook.hpp"
 
 #include <algorithm>
 
 #include "codebook_search.hpp"
-#include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
 
 namespace tetrapulse::protocol {
 namespace {

@@ -1,6 +1,6 @@
-#include "tetrapulse/protocol/codebook_frequency.hpp"
+#include "tetrapulse/codebook/codebook_frequency.hpp"
 
-#include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
 #include "tetrapulse/protocol/config.hpp"
 
 namespace tetrapulse::protocol {

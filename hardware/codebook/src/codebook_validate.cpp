@@ -1,6 +1,6 @@
 // Checks of a spec, a code and a pair of codes against SPEC.md §8.
-#include "tetrapulse/protocol/codebook.hpp"
-#include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
 
 namespace tetrapulse::protocol {
 namespace {

@@ -31,7 +31,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "tetrapulse/protocol/frequency_code.hpp"
+#include "tetrapulse/codebook/frequency_code.hpp"
 #include "tetrapulse/protocol/result.hpp"
 
 namespace tetrapulse::protocol {

@@ -1,5 +1,5 @@
 // Word measures checked against a plain string reference (character i = bit i).
-#include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <string>
 
-#include "tetrapulse/protocol/codebook_random.hpp"
+#include "tetrapulse/codebook/codebook_random.hpp"
 
 namespace tetrapulse::protocol {
 namespace {

@@ -1,5 +1,5 @@
 // The codebook search and its checks (SPEC.md §8).
-#include "tetrapulse/protocol/codebook.hpp"
+#include "tetrapulse/codebook/codebook.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "tetrapulse/protocol/codebook_word.hpp"
-#include "tetrapulse/protocol/codebook_workspace.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook_workspace.hpp"
 
 namespace tetrapulse::protocol {
 namespace {

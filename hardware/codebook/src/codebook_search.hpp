@@ -5,9 +5,9 @@
 // draws is part of the algorithm.
 #include <cstdint>
 
-#include "tetrapulse/protocol/codebook.hpp"
-#include "tetrapulse/protocol/codebook_random.hpp"
-#include "tetrapulse/protocol/codebook_workspace.hpp"
+#include "tetrapulse/codebook/codebook.hpp"
+#include "tetrapulse/codebook/codebook_random.hpp"
+#include "tetrapulse/codebook/codebook_workspace.hpp"
 
 namespace tetrapulse::protocol {
 

@@ -3,7 +3,7 @@
 // with (1,2)-swaps, after Andrade, Resende & Werneck, "Fast local search for
 // the maximum independent set problem", J. Heuristics 18 (2012).
 #include "codebook_search.hpp"
-#include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
 
 namespace tetrapulse::protocol {
 

@@ -1,4 +1,4 @@
-#include "tetrapulse/protocol/frequency_code.hpp"
+#include "tetrapulse/codebook/frequency_code.hpp"
 
 
 namespace tetrapulse::protocol {

@@ -1,7 +1,7 @@
 // The frequency family checked against plain floating-point references: apparent
 // frequencies, lit time, dark runs, and separability of every chosen pair at the
 // extremes of the clock error.
-#include "tetrapulse/protocol/codebook_frequency.hpp"
+#include "tetrapulse/codebook/codebook_frequency.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "tetrapulse/protocol/codebook_word.hpp"
+#include "tetrapulse/codebook/codebook_word.hpp"
 
 namespace tetrapulse::protocol {
 namespace {

@@ -1,6 +1,6 @@
 #pragma once
 // Working memory of the codebook search (about 4.5 MB), owned by the caller so
-// that the protocol library never allocates. A host allocates one and reuses it;
+// that the codebook library never allocates. A host allocates one and reuses it;
 // it holds no state between calls. Its sizes are part of the algorithm
 // (SPEC.md §8): at most kMaxCandidates admissible words take part in a search,
 // and their conflict graph must fit kMaxNeighbours adjacency entries.

@@ -1,0 +1,51 @@
+#pragma once
+// Per-frame timing of the whole localizer over a rendered sequence, shared by the
+// pipeline benchmarks (four_targets_sequence.hpp) and the scale benchmarks
+// (scale_targets_sequence.hpp): both time one frame per iteration the same way.
+#include <benchmark/benchmark.h>
+
+#include <cstdint>
+#include <memory>
+
+#include <opencv2/core/utility.hpp>
+
+#include "four_targets_sequence.hpp"
+#include "tetrapulse/localizer/localizer.hpp"
+
+namespace tetrapulse::bench {
+
+// Runs frames [from, to) of `s` through `localizer`.
+inline void feed(Localizer* localizer, const Sequence& s, int from, int to) {
+  for (int k = from; k < to; ++k)
+    benchmark::DoNotOptimize(localizer->process(s.images[size_t(k)], s.starts[size_t(k)], s.exposure_ns));
+}
+
+// Times one frame per iteration from frame `warm_up` on, on one thread, restarting the
+// localizer (untimed, warmed up again) at the end of the sequence. Counters: poses per
+// frame, and the share of frames searched whole.
+inline void time_frames(benchmark::State& state, const Sequence& s, const TargetsFile& targets,
+                        const LocalizerOptions& options, int warm_up) {
+  cv::setNumThreads(1);
+  const int frames = int(s.images.size());
+  auto localizer = std::make_unique<Localizer>(s.scenario.camera, targets, options);
+  feed(localizer.get(), s, 0, warm_up);
+  int k = warm_up;
+  int64_t poses = 0, searched = 0;
+  for (auto _ : state) {
+    if (k == frames) {
+      state.PauseTiming();
+      localizer = std::make_unique<Localizer>(s.scenario.camera, targets, options);
+      feed(localizer.get(), s, 0, warm_up);
+      k = warm_up;
+      state.ResumeTiming();
+    }
+    auto out = localizer->process(s.images[size_t(k)], s.starts[size_t(k)], s.exposure_ns);
+    poses += out ? int64_t(out->size()) : 0;
+    searched += localizer->searched_whole_image();
+    ++k;
+  }
+  state.counters["poses_per_frame"] = double(poses) / double(state.iterations());
+  state.counters["whole_image_share"] = double(searched) / double(state.iterations());
+}
+
+}  // namespace tetrapulse::bench
