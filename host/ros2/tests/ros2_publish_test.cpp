@@ -238,9 +238,15 @@ TEST_F(Ros2Publish, ReliableReadersGetEveryPoseWithEqualValuesAndItsCovariance) 
 TEST_F(Ros2Publish, AcceptanceTfReaderInDomain42GetsPosesCsv) {
   const std::vector<std::string> domain{"ROS_DOMAIN_ID=42"};
   auto tf = listen("tf", {"tf", "--depth", "100"}, domain);
+  // A reader of domain 0 beside it, ending at its first sample: it must get none.
+  auto other = listen("tf_domain0", {"tf", "--depth", "100", "--count", "1", "--timeout-ms", std::to_string(kRunMs)},
+                      {"ROS_DOMAIN_ID=0"});
   const Run run = localize({"--out", path("poses.csv"), "--ros2"}, domain);
   ASSERT_EQ(run.exit, 0) << run.err;
   finish(*tf, "tf");
+  // Everything of domain 42 has arrived there; a sample across domains would have
+  // ended the other reader by now. -1: still waiting after 2 s (then killed).
+  EXPECT_EQ(other->wait(2000), -1) << "a reader in domain 0 got a sample of domain 42: " << other->read_rest(1000);
 
   const auto rows = read_poses_csv(path("poses.csv"));
   ASSERT_GT(rows.size(), 250u);
