@@ -56,9 +56,11 @@ class LiveFrameSource final : public FrameSource {
       if (auto r = record_->add_frame(out.frame, out.timestamp_ns, out.exposure_ns, out.image); !r) return tl::unexpected(r.error());
     }
     previous_end_ns_ = f->exposure_end_host_ns;
+    monotonic_minus_rig_ns_ = f->exposure_end_host_ns - (out.timestamp_ns + out.exposure_ns);
     return std::optional<Frame>(std::move(out));
   }
   std::optional<size_t> count() const override { return std::nullopt; }
+  LiveLoopState state() const { return LiveLoopState{live_->stats(), monotonic_minus_rig_ns_}; }
 
  private:
   std::unique_ptr<LiveCapture> live_;
@@ -67,6 +69,7 @@ class LiveFrameSource final : public FrameSource {
   LatencyStats latency_;
   std::optional<int64_t> previous_end_ns_;
   uint64_t bad_named_ = 0;
+  int64_t monotonic_minus_rig_ns_ = 0;
 };
 
 }  // namespace
@@ -88,6 +91,12 @@ tl::expected<std::unique_ptr<FrameSource>, std::string> live_frame_source(const 
     record = std::move(*w);
   }
   return std::unique_ptr<FrameSource>(new LiveFrameSource(std::move(*live), stop, std::move(record)));
+}
+
+std::optional<LiveLoopState> live_loop_state(const FrameSource& source) {
+  const auto* live = dynamic_cast<const LiveFrameSource*>(&source);
+  if (!live) return std::nullopt;
+  return live->state();
 }
 
 }  // namespace tetrapulse::cli

@@ -21,4 +21,14 @@ tl::expected<std::unique_ptr<FrameSource>, std::string> live_frame_source(const 
                                                                           const TargetsFile& targets,
                                                                           const std::atomic<bool>& stop);
 
+// What the live loop knows after the frame it handed out last, for --ros2's status and
+// stamps (ros2_output.hpp); nullopt when `source` is not live_frame_source's.
+struct LiveLoopState {
+  LiveStats stats;
+  // CLOCK_MONOTONIC minus rig time at that frame: 0 when rig time is CLOCK_MONOTONIC;
+  // with --camera-clock-is-rig-time the mapping by the fastest transfer seen.
+  int64_t monotonic_minus_rig_ns = 0;
+};
+std::optional<LiveLoopState> live_loop_state(const FrameSource& source);
+
 }  // namespace tetrapulse::cli

@@ -123,6 +123,20 @@ int run_localize(const LocalizeArgs& a) {
     auto r = Ros2Output::open(a.ros2, camera, targets, live);
     if (!r) return fail(kExitUsage, r.error());
     ros2 = std::move(*r);
+    if (live_loop_state(*source)) {
+      ros2->follow_live([&source] {
+        const LiveLoopState l = *live_loop_state(*source);
+        LiveFeed f;
+        f.frames_matched = l.stats.match.matched;
+        f.synchronised = l.stats.synchronised;
+        f.counters.queue_drops = l.stats.queue_drops;
+        f.counters.bad_buffers = l.stats.bad_buffers;
+        f.counters.exposures_without_frame = l.stats.match.dropped;
+        f.counters.frames_without_exposure = l.stats.match.unmatched_frames;
+        f.monotonic_minus_rig_ns = l.monotonic_minus_rig_ns;
+        return f;
+      });
+    }
   }
   const PoseFormat format = format_of(a.format);
   std::optional<PoseWriter> writer;

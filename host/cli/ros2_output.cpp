@@ -1,5 +1,6 @@
 #include "ros2_output.hpp"
 
+#include <atomic>
 #include <cstdio>
 
 #include "tetrapulse/host/rig_clock.hpp"
@@ -28,6 +29,10 @@ struct Ros2Output::State {
   std::optional<ros2::DurationStats> latency;  // live: mid-exposure to publish
   std::optional<int64_t> last_frame;
   std::optional<int64_t> next_status_ns;
+  std::function<LiveFeed()> live_feed;
+  // CLOCK_MONOTONIC minus rig time of the newest frame, for stamps on the publisher's
+  // thread (live only; 0: rig time is CLOCK_MONOTONIC).
+  std::shared_ptr<std::atomic<int64_t>> monotonic_minus_rig = std::make_shared<std::atomic<int64_t>>(0);
 };
 
 Ros2Output::Ros2Output(Ros2Output&&) noexcept = default;
@@ -53,6 +58,8 @@ void add_ros2_options(CLI::App* command, Ros2Args* args) {
 
 tl::expected<Ros2Output, std::string> Ros2Output::open(const Ros2Args& args, const CameraInfo& camera,
                                                        const TargetsFile& targets, bool live) {
+  Ros2Output out;
+  out.state_ = std::make_unique<State>();
   ros2::DdsPublisherOptions options;
   options.frame_id = args.frame_id.empty() ? camera.name : args.frame_id;
   if (options.frame_id.empty()) options.frame_id = "camera";
@@ -60,16 +67,17 @@ tl::expected<Ros2Output, std::string> Ros2Output::open(const Ros2Args& args, con
   options.ros_namespace = args.ros_namespace;
   for (const Target& t : targets.targets) options.target_ids.push_back(t.id);
   if (live) {
-    // The live camera's rig time is this host's CLOCK_MONOTONIC (frame_source.hpp).
-    options.stamp_ns = [clock = host::RigClock(0)](int64_t rig_ns) { return clock.to_realtime(rig_ns); };
+    // Rig time -> CLOCK_MONOTONIC (the live loop's mapping of the newest frame) ->
+    // CLOCK_REALTIME (the difference now: the stamp is written within ms of the frame).
+    options.stamp_ns = [mmr = out.state_->monotonic_minus_rig](int64_t rig_ns) {
+      return host::RigClock(0).to_realtime(rig_ns + mmr->load(std::memory_order_relaxed));
+    };
   }
   for (auto check : {ros2::check_node_name(options.node_name), ros2::check_namespace(options.ros_namespace),
                      ros2::check_frame_id(options.frame_id)}) {
     if (!check) return tl::unexpected("--ros2: " + check.error().message);
   }
 
-  Ros2Output out;
-  out.state_ = std::make_unique<State>();
   out.state_->targets = &targets;
   out.state_->wait_ns = int64_t(args.wait_ms) * kNsPerMs;
   if (live) out.state_->latency.emplace();
@@ -92,11 +100,32 @@ void Ros2Output::fail(const std::string& message) {
   std::fprintf(stderr, "tetrapulse localize: --ros2: %s; localizing on without publishing\n", message.c_str());
 }
 
+void Ros2Output::follow_live(std::function<LiveFeed()> feed) {
+  state_->live_feed = std::move(feed);
+  state_->status.live.emplace();
+}
+
 void Ros2Output::frame(const Frame& frame, const std::vector<TargetPose>& poses, int64_t processing_ns,
                        const Localizer& localizer) {
   State& s = *state_;
-  s.status.frames_matched += 1;
-  if (s.last_frame && frame.frame > *s.last_frame + 1) s.status.frames_dropped += uint64_t(frame.frame - *s.last_frame - 1);
+  int64_t monotonic_minus_rig = 0;
+  if (s.live_feed) {
+    // The loop's own counters: a frame lost to the queue, a bad buffer or a missing
+    // exposure is counted once (with the sync master a bad buffer's exposure is the
+    // one without a frame).
+    const LiveFeed f = s.live_feed();
+    const uint64_t localized = s.status.live->frames_localized + 1;
+    s.status.live = f.counters;
+    s.status.live->frames_localized = localized;
+    s.status.frames_matched = f.frames_matched;
+    s.status.frames_dropped = f.counters.queue_drops + f.counters.frames_without_exposure +
+                              (f.synchronised ? f.counters.exposures_without_frame : f.counters.bad_buffers);
+    monotonic_minus_rig = f.monotonic_minus_rig_ns;
+    s.monotonic_minus_rig->store(monotonic_minus_rig, std::memory_order_relaxed);
+  } else {
+    s.status.frames_matched += 1;
+    if (s.last_frame && frame.frame > *s.last_frame + 1) s.status.frames_dropped += uint64_t(frame.frame - *s.last_frame - 1);
+  }
   s.last_frame = frame.frame;
   s.status.rig_time_ns = frame.timestamp_ns + frame.exposure_ns / 2;
   s.status.targets_with_pose.clear();
@@ -104,8 +133,7 @@ void Ros2Output::frame(const Frame& frame, const std::vector<TargetPose>& poses,
   s.processing.add(processing_ns);
   if (!s.publisher) return;
   if (auto r = s.publisher->publish(poses); !r) return fail(r.error().message);
-  // The live camera's rig time is this host's CLOCK_MONOTONIC.
-  if (s.latency) s.latency->add(host::monotonic_now_ns() - s.status.rig_time_ns);
+  if (s.latency) s.latency->add(host::monotonic_now_ns() - (s.status.rig_time_ns + monotonic_minus_rig));
   if (!s.next_status_ns) s.next_status_ns = s.status.rig_time_ns + kStatusPeriodNs;
   if (s.status.rig_time_ns >= *s.next_status_ns) {
     publish_status(localizer);

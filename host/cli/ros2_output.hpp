@@ -8,6 +8,7 @@
 // line says why and that nothing is published, poses are written as without
 // --ros2, and the command exits with kExitPublishFailed (7) at the end.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,16 +32,29 @@ struct Ros2Args {
 
 void add_ros2_options(CLI::App* command, Ros2Args* args);
 
+// What a live camera loop (live_localize.hpp) knows after the frame it handed out last.
+struct LiveFeed {
+  uint64_t frames_matched = 0;   // frames the exposure matcher stamped
+  bool synchronised = false;     // stamped by the sync master (then a bad buffer is an exposure without a frame)
+  ros2::LiveFrameCounters counters;  // frames_localized is counted here, not read
+  int64_t monotonic_minus_rig_ns = 0;
+};
+
 class Ros2Output {
  public:
-  // `live`: stamps on CLOCK_REALTIME (the live camera's rig time is the host's
-  // CLOCK_MONOTONIC) and no wait for readers; else rig time as is.
+  // `live`: stamps on CLOCK_REALTIME (rig time mapped to the host's CLOCK_MONOTONIC,
+  // follow_live) and no wait for readers; else rig time as is.
   // Returns kExitUsage's message for a bad name (nothing else is wrong then).
   static tl::expected<Ros2Output, std::string> open(const Ros2Args& args, const CameraInfo& camera,
                                                     const TargetsFile& targets, bool live);
   Ros2Output(Ros2Output&&) noexcept;
   Ros2Output& operator=(Ros2Output&&) noexcept;
   ~Ros2Output();
+
+  // A live camera loop: read once per frame, for the status's frames matched and
+  // dropped, for stamps (rig time -> CLOCK_MONOTONIC -> CLOCK_REALTIME) and latency.
+  // Without it a live source's rig time is taken as CLOCK_MONOTONIC.
+  void follow_live(std::function<LiveFeed()> feed);
 
   // After the localizer returned `poses` for `frame`; `processing_ns` what reading
   // and localizing the frame took.

@@ -62,6 +62,13 @@ std::vector<DiagnosticEntry> status_diagnostics(const LocalizerStatus& status, c
   loc.values.emplace_back("frames_matched", std::to_string(status.frames_matched));
   loc.values.emplace_back("frames_dropped", std::to_string(status.frames_dropped));
   loc.values.emplace_back("targets_with_pose", ids);
+  if (const auto& l = status.live) {
+    loc.values.emplace_back("frames_localized", std::to_string(l->frames_localized));
+    loc.values.emplace_back("queue_drops", std::to_string(l->queue_drops));
+    loc.values.emplace_back("bad_buffers", std::to_string(l->bad_buffers));
+    loc.values.emplace_back("exposures_without_frame", std::to_string(l->exposures_without_frame));
+    loc.values.emplace_back("frames_without_exposure", std::to_string(l->frames_without_exposure));
+  }
   if (status.processing) add_durations("processing", *status.processing, &loc);
   if (status.latency) add_durations("latency", *status.latency, &loc);
   out.push_back(std::move(loc));

@@ -13,9 +13,13 @@
 #include <set>
 #include <sstream>
 
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
 #include "child_process.hpp"
 #include "tetrapulse/localizer/camera_model.hpp"
 #include "tetrapulse/datasets/dataset_io.hpp"
+#include "tetrapulse/datasets/rig_dataset.hpp"
 #include "tetrapulse/ros2/ros_conventions.hpp"
 
 namespace tetrapulse::ros2 {
@@ -234,9 +238,15 @@ TEST_F(Ros2Publish, ReliableReadersGetEveryPoseWithEqualValuesAndItsCovariance) 
 TEST_F(Ros2Publish, AcceptanceTfReaderInDomain42GetsPosesCsv) {
   const std::vector<std::string> domain{"ROS_DOMAIN_ID=42"};
   auto tf = listen("tf", {"tf", "--depth", "100"}, domain);
+  // A reader of domain 0 beside it, ending at its first sample: it must get none.
+  auto other = listen("tf_domain0", {"tf", "--depth", "100", "--count", "1", "--timeout-ms", std::to_string(kRunMs)},
+                      {"ROS_DOMAIN_ID=0"});
   const Run run = localize({"--out", path("poses.csv"), "--ros2"}, domain);
   ASSERT_EQ(run.exit, 0) << run.err;
   finish(*tf, "tf");
+  // Everything of domain 42 has arrived there; a sample across domains would have
+  // ended the other reader by now. -1: still waiting after 2 s (then killed).
+  EXPECT_EQ(other->wait(2000), -1) << "a reader in domain 0 got a sample of domain 42: " << other->read_rest(1000);
 
   const auto rows = read_poses_csv(path("poses.csv"));
   ASSERT_GT(rows.size(), 250u);
@@ -259,6 +269,47 @@ TEST_F(Ros2Publish, AcceptanceTfReaderInDomain42GetsPosesCsv) {
   RecordProperty("received_fraction", std::to_string(fraction));
   EXPECT_GE(fraction, 0.99);
   EXPECT_EQ(transforms.size(), rows.size()) << "no transform beyond poses.csv's rows";
+}
+
+TEST_F(Ros2Publish, VideoReplayPublishesWithRigTimeStamps) {
+  // The dataset's frames as a lossless video (FFV1) with its timestamps file:
+  // `localize --video --ros2` is a replay, so the stamps are rig time as is.
+  auto d = RigDataset::open(dataset());
+  ASSERT_TRUE(d) << d.error().what();
+  const auto frames = d->frames();
+  cv::VideoWriter video(path("frames.mkv"), cv::VideoWriter::fourcc('F', 'F', 'V', '1'), 100,
+                        cv::Size(d->camera().width, d->camera().height), false);
+  ASSERT_TRUE(video.isOpened()) << "OpenCV cannot write FFV1";
+  std::ofstream stamps(path("timestamps.csv"));
+  stamps << "frame,timestamp_ns,exposure_ns\n";
+  for (const FrameRecord& f : frames) {
+    const cv::Mat image = cv::imread(dataset() + "/" + f.file, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(image.type(), CV_8UC1) << f.file;
+    video.write(image);
+    stamps << f.frame << ',' << f.timestamp_ns << ',' << f.exposure_ns << '\n';
+  }
+  video.release();
+  stamps.close();
+
+  auto tf = listen("tf", {"tf"});
+  const Run run = localize({"--video", path("frames.mkv"), "--timestamps", path("timestamps.csv"), "--out",
+                            path("video.csv"), "--ros2", "--quiet"});
+  ASSERT_EQ(run.exit, 0) << run.err;
+  finish(*tf, "tf");
+  const Run plain = localize({"--out", path("plain.csv"), "--quiet"}, {}, "plain");
+  ASSERT_EQ(plain.exit, 0) << plain.err;
+
+  const auto rows = read_poses_csv(path("video.csv"));
+  ASSERT_GT(rows.size(), 250u);
+  EXPECT_EQ(slurp(path("video.csv")), slurp(path("plain.csv"))) << "a lossless video gives the dataset's poses";
+  const auto transforms = read_tf(path("tf.csv"));
+  ASSERT_EQ(transforms.size(), rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(transforms[i].stamp_ns, rows[i].timestamp_ns) << "row " << i;
+    EXPECT_EQ(transforms[i].parent, camera_name());
+    EXPECT_EQ(transforms[i].child, "tetrapulse/target_" + std::to_string(rows[i].target));
+    for (int k = 0; k < 7; ++k) EXPECT_NEAR(transforms[i].v[k], rows[i].v[k], 1e-6) << "row " << i;
+  }
 }
 
 TEST_F(Ros2Publish, QosMatchesReliableAndBestEffortReadersAsRos2Does) {

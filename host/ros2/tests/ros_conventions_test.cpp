@@ -185,6 +185,7 @@ TEST(StatusDiagnostics, OneEntryForTheLocalizerAndOnePerBoard) {
   EXPECT_EQ(value(e[0], "processing_mean_ms"), "3.000");
   EXPECT_EQ(value(e[0], "processing_max_ms"), "4.000");
   EXPECT_EQ(value(e[0], "latency_mean_ms"), "(none)");
+  EXPECT_EQ(value(e[0], "queue_drops"), "(none)") << "a replay has no live counters";
   EXPECT_EQ(e[1].name, "tetrapulse_cam: board can:can0:1");
   EXPECT_EQ(e[1].level, kDiagnosticOk);
   EXPECT_EQ(value(e[1], "offset_ns"), "-1200");
@@ -193,6 +194,17 @@ TEST(StatusDiagnostics, OneEntryForTheLocalizerAndOnePerBoard) {
   EXPECT_EQ(value(e[2], "offset_ns"), "(none)");
   // Frames dropped in this window make the localizer WARN.
   EXPECT_EQ(status_diagnostics(s, "n", "cam", 1)[0].level, kDiagnosticWarn);
+
+  // Live: the loop's counters beside the totals, and its latency.
+  s.live = LiveFrameCounters{497, 1, 2, 3, 4};
+  s.latency = d;
+  const auto live = status_diagnostics(s, "n", "cam", 0)[0];
+  EXPECT_EQ(value(live, "frames_localized"), "497");
+  EXPECT_EQ(value(live, "queue_drops"), "1");
+  EXPECT_EQ(value(live, "bad_buffers"), "2");
+  EXPECT_EQ(value(live, "exposures_without_frame"), "3");
+  EXPECT_EQ(value(live, "frames_without_exposure"), "4");
+  EXPECT_EQ(value(live, "latency_last_ms"), "4.000");
 }
 
 }  // namespace

@@ -39,11 +39,24 @@ struct DurationStats {
   int64_t mean_ns() const { return count == 0 ? 0 : total_ns / int64_t(count); }
 };
 
+// A live camera loop's own counts, in total (the loop's frames_dropped is made of them).
+struct LiveFrameCounters {
+  uint64_t frames_localized = 0;         // frames that reached the localizer
+  uint64_t queue_drops = 0;              // dropped between capture and localizer (it fell behind)
+  uint64_t bad_buffers = 0;              // incomplete or wrong-sized buffers from the camera
+  uint64_t exposures_without_frame = 0;  // sync master: exposures no frame came from
+  uint64_t frames_without_exposure = 0;  // frames no exposure matched
+};
+
 struct LocalizerStatus {
   int64_t rig_time_ns = 0;       // the newest frame's mid-exposure (the header stamp's source)
   std::vector<BoardSync> boards;
-  uint64_t frames_matched = 0;   // frames with a rig timestamp that reached the localizer, in total
-  uint64_t frames_dropped = 0;   // frames lost before the localizer (gaps in frame numbers, unmatched exposures)
+  // In total. A replay: frames with a rig timestamp that reached the localizer, and
+  // gaps in frame numbers. Live: frames the exposure matcher stamped, and frames lost
+  // before the localizer by the loop's counters (`live`).
+  uint64_t frames_matched = 0;
+  uint64_t frames_dropped = 0;
+  std::optional<LiveFrameCounters> live;
   std::vector<int> targets_with_pose;  // targets posed in the newest frame
   // Over the window since the previous status:
   std::optional<DurationStats> processing;  // localizer time per frame (wall clock)
