@@ -198,9 +198,13 @@ class AravisCamera final : public Camera {
 
   // GigE Vision: a lost packet is asked for again (PACKETRESEND_CMD) instead of
   // costing its frame. Aravis turns resend off itself for a camera that does not
-  // announce it; the summary says so. The first request waits 2 ms for packets that
-  // only came out of order, a lost resend is asked for again after 10 ms, and a frame
-  // is given up 100 ms after its last packet (then it is one bad buffer).
+  // announce it; the summary says so. A gap is asked for 2 ms after it is seen (a
+  // packet only out of order has come by then), again every 5 ms while the answer is
+  // lost too -- also the wait before a frame whose last packets are missing is asked
+  // for, so it bounds the latency a loss adds (Aravis' default, 20 ms, made a frame
+  // with a lost packet ~20 ms late; 3 ms made spurious requests on a loaded host, and
+  // frames given up at Aravis' request limit) -- and a frame is given up 100 ms after
+  // its last packet (then it is one bad buffer).
   void configure_resend() {
     if (!ARV_IS_GV_STREAM(stream_)) return;
     gv_stream_ = true;
@@ -208,7 +212,7 @@ class AravisCamera final : public Camera {
     g_object_get(stream_, "packet-resend", &resend, nullptr);
     if (resend == ARV_GV_STREAM_PACKET_RESEND_NEVER) return;  // the camera does not offer it
     g_object_set(stream_, "packet-resend", ARV_GV_STREAM_PACKET_RESEND_ALWAYS, "initial-packet-timeout", 2000u,
-                 "packet-timeout", 10000u, "frame-retention", 100000u, nullptr);
+                 "packet-timeout", 5000u, "frame-retention", 100000u, nullptr);
   }
 
   // Frames held while one waits for resent packets (Aravis hands frames out in
