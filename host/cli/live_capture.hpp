@@ -78,6 +78,8 @@ class LiveCapture {
   const std::optional<std::string>& error() const { return error_; }
   LiveStats stats() const;
   const std::string& camera_name() const { return camera_->name(); }
+  // The camera's transport line (packet resend), "" when it has none (summaries).
+  std::string transport_summary() { return camera_->transport_summary(); }
 
  private:
   LiveCapture(const LiveArgs& args, std::unique_ptr<host::Camera> camera, std::unique_ptr<host::GpioSync> sync);

@@ -81,6 +81,7 @@ int run_record(RecordArgs a) {
   const bool stopped = stop;
   const auto error = (*live)->error();
   const LiveStats s = (*live)->stats();
+  const std::string transport = (*live)->transport_summary();
   live->reset();  // the camera stops before the files are finished
   if (auto r = writer->finish(); !r) return fail(kExitFailure, r.error().what());
   if (progress) std::fputs("\r\033[K", stderr);
@@ -93,6 +94,7 @@ int run_record(RecordArgs a) {
                  static_cast<unsigned long long>(s.queue_drops), static_cast<unsigned long long>(s.match.dropped),
                  static_cast<unsigned long long>(s.match.unmatched_frames), static_cast<unsigned long long>(skipped),
                  stamp_source(s));
+    if (!transport.empty()) std::fprintf(stderr, "tetrapulse record: %s\n", transport.c_str());
   }
   if (error && !stopped && (a.live.frames == 0 || written < a.live.frames)) return fail(kExitDeviceError, *error);
   return skipped > 0 ? kExitSkipped : kExitOk;

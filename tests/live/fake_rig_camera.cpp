@@ -1,23 +1,29 @@
-// A GigE Vision camera on 127.0.0.1 that shows the virtual rig: Aravis' in-process
-// ArvGvFakeCamera whose fill-pattern callback serves a simulated rig dataset's images
-// (`tetrapulse sim ... --out DIR`) in frames.csv order, each buffer stamped with its
-// frame's exposure start (the simulated camera's clock is rig time). Frames travel as
-// GVSP packets, with `lost_per_thousand` of them dropped by the fake camera.
-//   fake_rig_camera DATASET LOST_PER_THOUSAND SECONDS
-// Run only inside tests/netns/isolated; serves for SECONDS, then exits.
+// A GigE Vision camera on 127.0.0.1 that shows the virtual rig: Aravis' ArvFakeCamera
+// (register map, GenICam features) whose fill-pattern callback serves a simulated rig
+// dataset's images (`tetrapulse sim ... --out DIR`) in frames.csv order, each buffer
+// stamped with its frame's exposure start (the simulated camera's clock is rig time).
+// Frames travel as GVSP packets through fake_gige_server (packet resend answered),
+// with `lost_per_thousand` of all packets dropped.
+//   fake_rig_camera DATASET LOST_PER_THOUSAND SECONDS [--no-resend]
+// Run only inside tests/netns/isolated; serves for SECONDS (or until SIGTERM/SIGINT),
+// then prints what it sent: "fake_rig_camera: sent F frames, ...".
 #include <arv.h>
 
 #include <algorithm>
-#include <chrono>
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <thread>
 #include <vector>
 
+#include "fake_gige_server.hpp"
 #include "tetrapulse/datasets/rig_dataset.hpp"
 
 namespace {
+
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
 
 struct Served {
   std::vector<cv::Mat> images;
@@ -49,8 +55,9 @@ void fill(ArvBuffer* buffer, void* data, guint32, guint32, ArvPixelFormat) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: fake_rig_camera DATASET LOST_PER_THOUSAND SECONDS\n");
+  const bool no_resend = argc == 5 && std::strcmp(argv[4], "--no-resend") == 0;
+  if (argc != 4 && !no_resend) {
+    std::fprintf(stderr, "usage: fake_rig_camera DATASET LOST_PER_THOUSAND SECONDS [--no-resend]\n");
     return 2;
   }
   auto d = tetrapulse::RigDataset::open(argv[1]);
@@ -62,26 +69,39 @@ int main(int argc, char** argv) {
   for (size_t i = 0; i < d->frames().size(); ++i) {
     auto image = d->load_image(i);
     if (!image || image->type() != CV_8UC1) {
-      std::fprintf(stderr, "fake_rig_camera: frame %zu: not an 8-bit grey image\n", i);
+      std::fprintf(stderr, "fake_rig_camera: %s: frame %zu: not an 8-bit grey image\n", argv[1], i);
       return 1;
     }
     served.images.push_back(image->clone());
     served.stamps.push_back(d->frames()[i].timestamp_ns);
   }
-  // The lost-packet ratio (a fraction) is given when the camera is made, as the
-  // arv-fake-gv-camera tool's -r does.
-  auto* camera = ARV_GV_FAKE_CAMERA(g_object_new(ARV_TYPE_GV_FAKE_CAMERA, "interface-name", "127.0.0.1", "serial-number",
-                                                 "TP-RIG-1", "gvsp-lost-ratio", std::atof(argv[2]) / 1000.0, nullptr));
-  if (!camera || !arv_gv_fake_camera_is_running(camera)) {
-    std::fprintf(stderr, "fake_rig_camera: cannot listen on 127.0.0.1\n");
+  if (served.images.empty()) {
+    std::fprintf(stderr, "fake_rig_camera: %s: no frames\n", argv[1]);
     return 1;
   }
-  ArvFakeCamera* fake = arv_gv_fake_camera_get_fake_camera(camera);
+  ArvFakeCamera* fake = arv_fake_camera_new("TP-RIG-1");
   served.fake = fake;
   arv_fake_camera_set_fill_pattern(fake, fill, &served);
-  std::printf("fake_rig_camera: serving %zu frames on 127.0.0.1\n", served.images.size());
+  std::signal(SIGTERM, on_signal);
+  std::signal(SIGINT, on_signal);
+  tetrapulse::live_test::FakeGigeOptions options;
+  options.lost_ratio = std::atof(argv[2]) / 1000.0;
+  options.resend = !no_resend;
+  tetrapulse::live_test::FakeGigeCounters c;
+  std::printf("fake_rig_camera: serving %zu frames on %s, %.1f %% of packets lost, resend %s\n", served.images.size(),
+              options.address.c_str(), options.lost_ratio * 100, options.resend ? "answered" : "ignored");
   std::fflush(stdout);
-  std::this_thread::sleep_for(std::chrono::seconds(std::atoi(argv[3])));
-  g_object_unref(camera);
+  const auto failed = tetrapulse::live_test::serve_fake_gige(fake, options, std::atoi(argv[3]), g_stop, &c);
+  g_object_unref(fake);
+  if (failed) {
+    std::fprintf(stderr, "fake_rig_camera: %s\n", failed->c_str());
+    return 1;
+  }
+  std::printf("fake_rig_camera: sent %llu frames, %llu packets (%llu lost), %llu resend requests for %llu packets: "
+              "%llu resent (%llu lost again), %llu unavailable\n",
+              static_cast<unsigned long long>(c.frames_sent), static_cast<unsigned long long>(c.packets_sent + c.packets_lost),
+              static_cast<unsigned long long>(c.packets_lost), static_cast<unsigned long long>(c.resend_requests),
+              static_cast<unsigned long long>(c.packets_requested), static_cast<unsigned long long>(c.packets_resent),
+              static_cast<unsigned long long>(c.resent_lost), static_cast<unsigned long long>(c.packets_unavailable));
   return 0;
 }

@@ -62,6 +62,9 @@ class Camera {
   HostResult<std::optional<CameraFrame>> grab(int timeout_ms);
   void stop() { do_stop(); }
   const CameraCounters& counters() const { return counters_; }
+  // What the transport did about losses (GigE Vision: packets asked for again), one
+  // line for the run's summary; "" where there is nothing to say.
+  std::string transport_summary() { return do_transport_summary(); }
 
  protected:
   explicit Camera(std::string name) : name_(std::move(name)) {}
@@ -71,6 +74,7 @@ class Camera {
   virtual HostResult<void> do_start() = 0;
   virtual HostResult<std::optional<CameraFrame>> do_grab(int timeout_ms) = 0;
   virtual void do_stop() = 0;
+  virtual std::string do_transport_summary() { return ""; }
 
   std::string name_;
   CameraCounters counters_;
