@@ -42,6 +42,7 @@ DatasetResult<cv::Mat> RigDataset::load_image(size_t index, ImageMode mode) cons
   if (index >= frames_.size()) {
     return dataset_error(path_of("frames.csv"), 0, fmt::format("no frame at index {}", index));
   }
+  if (mode == ImageMode::kForTargets) mode = targets_.needs_colour() ? ImageMode::kAsStored : ImageMode::kGrey;
   const std::string path = path_of(frames_[index].file);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) {
@@ -60,6 +61,9 @@ DatasetResult<cv::Mat> RigDataset::load_image(size_t index, ImageMode mode) cons
   const int depth = img.depth();
   if (img.channels() == 1) {
     if (depth != CV_8U && depth != CV_16U) return dataset_error(path, 0, "grey image must be 8- or 16-bit");
+    if (mode == ImageMode::kAsStored && targets_.needs_colour()) {
+      return dataset_error(path, 0, "grey image, but targets.yaml gives markers a colour: an 8-bit colour PNG is needed");
+    }
   } else if (img.channels() == 3 || img.channels() == 4) {
     if (depth != CV_8U) return dataset_error(path, 0, "colour image must be 8-bit");
     if (img.channels() == 4) cv::cvtColor(img, img, cv::COLOR_BGRA2BGR);

@@ -96,6 +96,67 @@ TEST(TargetsYaml, FormatRoundTripsEveryField) {
   EXPECT_EQ(back->targets[0].name, t->targets[0].name);
 }
 
+TEST(TargetsYaml, OldFilesReadAsLightGreyMarkers) {
+  auto t = parse_targets_yaml(kPaperTargets, "targets.yaml");
+  ASSERT_TRUE(t);
+  EXPECT_FALSE(t->needs_colour());
+  for (const Marker& m : t->targets[0].markers) {
+    EXPECT_EQ(m.appearance, Appearance::kLight);
+    EXPECT_FALSE(m.colour.has_value());
+  }
+  const std::string text = format_targets_yaml(*t);
+  EXPECT_EQ(text.find("appearance"), std::string::npos);  // nothing new written for LED rigs
+  EXPECT_EQ(text.find("colour"), std::string::npos);
+}
+
+TEST(TargetsYaml, AppearanceAndColourPerTargetAndMarker) {
+  std::string text = kPaperTargets;
+  const std::string at = "    markers:";
+  text.replace(text.find(at), at.size(), "    appearance: dark\n    colour: red\n    markers:");
+  const std::string m1 = "        code: \"1011100100\"";
+  text.replace(text.find(m1), m1.size(), m1 + "\n        colour: {u: 40.5, v: -30}");
+  const std::string m2 = "        code: \"0111010011\"";
+  text.replace(text.find(m2), m2.size(), m2 + "\n        appearance: light\n        colour: none");
+  auto t = parse_targets_yaml(text, "targets.yaml");
+  ASSERT_TRUE(t) << t.error().what();
+  const Target& target = t->targets[0];
+  EXPECT_EQ(target.markers[0].appearance, Appearance::kDark);
+  ASSERT_TRUE(target.markers[0].colour);
+  EXPECT_EQ(target.markers[0].colour->name, "red");
+  EXPECT_GT(target.markers[0].colour->v, 100);  // red: Cr far above grey
+  EXPECT_LT(target.markers[0].colour->u, 0);
+  ASSERT_TRUE(target.markers[1].colour);
+  EXPECT_DOUBLE_EQ(target.markers[1].colour->u, 40.5);
+  EXPECT_DOUBLE_EQ(target.markers[1].colour->v, -30);
+  EXPECT_EQ(target.markers[2].appearance, Appearance::kLight);
+  EXPECT_FALSE(target.markers[2].colour);
+  EXPECT_TRUE(t->needs_colour());
+  const std::string again = format_targets_yaml(*t);
+  auto back = parse_targets_yaml(again, "again.yaml");
+  ASSERT_TRUE(back) << back.error().what() << "\n" << again;
+  EXPECT_EQ(format_targets_yaml(*back), again);
+}
+
+TEST(TargetsYaml, BadAppearanceAndColourNameFileAndField) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"    appearance: shiny\n", "targets[0].appearance"},
+      {"    colour: mauve\n", "targets[0].colour"},
+      {"    colour: {u: 3}\n", "targets[0].colour.v"},
+      {"    colour: {u: 2, v: 1}\n", "too close to grey"},
+      {"    colour: {u: 500, v: 1}\n", "targets[0].colour"},
+      {"    colour: [1, 2]\n", "targets[0].colour"},
+  };
+  for (const auto& [insert, mentions] : cases) {
+    std::string text = kPaperTargets;
+    text.insert(text.find("    markers:"), insert);
+    auto t = parse_targets_yaml(text, "targets.yaml");
+    ASSERT_FALSE(t) << "accepted: " << insert;
+    EXPECT_EQ(t.error().file, "targets.yaml");
+    EXPECT_NE(t.error().message.find(mentions), std::string::npos) << t.error().what();
+    EXPECT_GT(t.error().line, 0) << t.error().what();
+  }
+}
+
 struct BadCase {
   std::string from, to;  // textual edit of the valid file
   int line;              // expected error line

@@ -233,7 +233,7 @@ Circle BlobRecovery::trim_arc_ends(const Circle& circle) {
 
 bool BlobRecovery::fit_circle(const cv::Mat& work, cv::Rect window, const Levels& levels,
                               const BlobExtractorConfig& config, const RegionGrower& grower, Region* region) {
-  const double level = levels.background + 0.5 * region->sums.peak;
+  const double level = levels.background + config.circle_rim_fraction * region->sums.peak;
   if (work.depth() == CV_8U) {
     collect_rim<uint8_t>(work, window, level, grower, *region);
   } else {

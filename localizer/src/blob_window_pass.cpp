@@ -223,7 +223,8 @@ void WindowPass::measure(const Window& w, Region* r) {
   r->blob.background = w.levels.reported_background;
   classify(config_, r);
   // A blob cut by the image or window border has a biased centroid; its rim is not cut.
-  if (r->accepted && r->blob.clipped && config_.refit_clipped) {
+  if (r->accepted && ((r->blob.clipped && config_.refit_clipped) ||
+                      (config_.fit_every_circle && r->blob.area >= config_.min_shape_area))) {
     recovery_.fit_circle(*w.work, w.rect, w.levels, config_, grower_, r);
   }
 }

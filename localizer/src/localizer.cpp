@@ -1,5 +1,7 @@
 #include "tetrapulse/localizer/localizer.hpp"
 
+#include "tetrapulse/localizer/target_appearance.hpp"
+
 #include <fmt/format.h>
 
 #include "code_checks.hpp"
@@ -58,7 +60,8 @@ struct Localizer::State {
         rig(rig_codes(targets)),
         frequency_coded(any_frequency_code(rig)),
         roster(camera, targets, options.prediction, options.min_roi_radius_px),
-        blobs(options.blobs, options.full_search_interval),
+        appearance(blobs_for_targets(options.blobs, targets)),
+        blobs(appearance.value_or(options.blobs), options.full_search_interval),
         reading(targets, options.bits, options.frequency,
                 std::max(options.identification.max_samples, options.verify_samples), frequency_coded),
         checks(targets, frequency_code_of(targets, rig), check_options(options)),
@@ -78,6 +81,8 @@ struct Localizer::State {
   bool frequency_coded;      // some marker plays a frequency code
   TargetRoster roster;
   RoiPlan plan;
+  // How the markers look, from targets.yaml; an error (mixed looks) refuses every frame.
+  tl::expected<BlobExtractorConfig, std::string> appearance;
   FrameBlobs blobs;
   BlobTracker tracker;
   CodeReading reading;
@@ -93,6 +98,10 @@ struct Localizer::State {
 
 tl::expected<void, LocalizerError> Localizer::State::check_frame(const cv::Mat& image, int64_t start,
                                                                 int64_t exposure) const {
+  if (!appearance) return tl::unexpected(LocalizerError{"targets.yaml: " + appearance.error()});
+  if (appearance->colour && (image.channels() != 3 || image.depth() != CV_8U)) {
+    return tl::unexpected(LocalizerError{"targets.yaml gives the markers a colour: frames must be 8-bit colour"});
+  }
   if (image.cols != camera.width() || image.rows != camera.height()) {
     return tl::unexpected(LocalizerError{
         fmt::format("image is {}x{}, the camera {}x{}", image.cols, image.rows, camera.width(), camera.height())});

@@ -2,6 +2,36 @@
 
 namespace tetrapulse {
 
+namespace {
+
+struct NamedColour {
+  const char* name;
+  double r, g, b;  // linear-ish sRGB of a saturated paint or LED, 0..1
+};
+
+constexpr NamedColour kNamedColours[] = {
+    {"red", 1, 0, 0},      {"green", 0, 1, 0},   {"blue", 0, 0, 1},        {"yellow", 1, 1, 0},
+    {"cyan", 0, 1, 1},     {"magenta", 1, 0, 1}, {"orange", 1, 0.5, 0},    {"purple", 0.5, 0, 1},
+};
+
+}  // namespace
+
+std::optional<MarkerColour> named_colour(const std::string& name) {
+  for (const NamedColour& c : kNamedColours) {
+    if (name != c.name) continue;
+    // BT.601 as OpenCV's BGR2YCrCb: Cr = (R - Y) 0.713, Cb = (B - Y) 0.564, in 8-bit levels.
+    const double y = 0.299 * c.r + 0.587 * c.g + 0.114 * c.b;
+    return MarkerColour{255.0 * 0.564 * (c.b - y), 255.0 * 0.713 * (c.r - y), name};
+  }
+  return std::nullopt;
+}
+
+std::string named_colour_list() {
+  std::string out;
+  for (const NamedColour& c : kNamedColours) out += (out.empty() ? "" : ", ") + std::string(c.name);
+  return out;
+}
+
 std::string code_text(const Code& code) {
   std::string s(code.length, '0');
   for (uint32_t i = 0; i < code.length; ++i) s[i] = code.bit(i) ? '1' : '0';
@@ -37,6 +67,15 @@ const Target* TargetsFile::find(int id) const {
     if (t.id == id) return &t;
   }
   return nullptr;
+}
+
+bool TargetsFile::needs_colour() const {
+  for (const Target& t : targets) {
+    for (const Marker& m : t.markers) {
+      if (m.colour) return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace tetrapulse

@@ -31,11 +31,12 @@ class RigDataset {
   enum class ImageMode {
     kGrey,      // 8- or 16-bit single channel; colour converted to 8-bit grey (the contract)
     kAsStored,  // as in the file (colour kept as 8-bit BGR)
+    kForTargets,  // kAsStored when some marker of targets.yaml has a colour, else kGrey
   };
   // Image of frames()[index]; the error names the file when it is missing,
   // empty, truncated or otherwise undecodable, of an unsupported type or not
   // camera-sized.
-  DatasetResult<cv::Mat> load_image(size_t index, ImageMode mode = ImageMode::kGrey) const;
+  DatasetResult<cv::Mat> load_image(size_t index, ImageMode mode = ImageMode::kForTargets) const;
 
   std::string path_of(const std::string& relative) const;
 

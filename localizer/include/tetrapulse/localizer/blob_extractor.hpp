@@ -85,6 +85,15 @@ struct BlobExtractorConfig {
   // Blobs touching the image border (or an ROI window's edge) get the circle
   // fit too, when their rim supports one: their centroid is biased.
   bool refit_clipped = true;
+  // Every accepted blob is centred by the circle fit when its rim supports one:
+  // passive markers lit from one side show a shadow-cut disc whose intensity
+  // centroid leans to the lit side, while the limb (the lit boundary against
+  // the background) still lies on the marker's circle.
+  bool fit_every_circle = false;
+  // The rim the circle fit follows: where the value crosses background +
+  // this fraction of the blob's peak. Shaded balls dim towards the limb, so
+  // passive markers want a lower level than LED spots (which are flat-topped).
+  double circle_rim_fraction = 0.5;
   double circle_inlier_px = 0.35;  // rim points within this distance support a circle
   int circle_trials = 64;          // RANSAC triples (deterministic)
 

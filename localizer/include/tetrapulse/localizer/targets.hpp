@@ -26,15 +26,39 @@ std::string code_text(const Code& code);
 // Parses "1101…" (1 to 64 characters); nullopt with `why` filled on anything else.
 std::optional<Code> parse_code(const std::string& text, std::string* why);
 
+// How a marker stands out from what is behind it (docs/rig-dataset.md):
+// brighter (LEDs, lit or reflective balls) or darker (painted balls on a lit floor).
+enum class Appearance : uint8_t { kLight, kDark };
+
+// A marker's colour as chroma about grey, in 8-bit levels: u = Cb - 128,
+// v = Cr - 128 (BT.601, OpenCV's YCrCb). Only its direction matters to the
+// localizer: blends with a grey background lie on the line from grey to it.
+struct MarkerColour {
+  double u = 0;
+  double v = 0;
+  std::string name;  // the named colour it came from ("" for u/v given as numbers)
+};
+
+// The chroma of a named colour (red, green, blue, yellow, cyan, magenta,
+// orange, purple); nullopt for any other name.
+std::optional<MarkerColour> named_colour(const std::string& name);
+// The named colours, for messages: "red, green, ...".
+std::string named_colour_list();
+
 struct Marker {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
   std::optional<Code> code;  // none: emits constantly
+  Appearance appearance = Appearance::kLight;
+  std::optional<MarkerColour> colour;  // none: seen in grey levels only
 };
 
 struct Target {
   int id = 0;
   std::string name;
   double marker_diameter_m = 0;
+  // Defaults of the markers that do not say their own (targets.yaml).
+  Appearance appearance = Appearance::kLight;
+  std::optional<MarkerColour> colour;
   std::array<Marker, 4> markers;
 
   // The four markers' codes as a board carries them (length 0: no code).
@@ -47,6 +71,8 @@ struct TargetsFile {
   std::vector<Target> targets;
 
   const Target* find(int id) const;
+  // Whether some marker has a colour: its images must be read in colour.
+  bool needs_colour() const;
 };
 
 }  // namespace tetrapulse
