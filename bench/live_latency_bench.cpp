@@ -1,6 +1,6 @@
 // Live latency, exposure end -> pose out, through the real GigE Vision stack: the
 // four-targets scene (four_targets_sequence.hpp) served at 100 Hz as GVSP packets by
-// the live tests' fake camera (tests/live/fake_gige_server, in this process, on
+// the live tests' fake camera (tests/live/fake_gige_server.cpp, in this process, on
 // 127.0.0.1), received by host::Camera's Aravis backend (packet resend on), and
 // localized frame by frame; a pose line is formatted for every pose, as `localize
 // --camera` writes them. Each buffer is stamped with CLOCK_MONOTONIC when the fake

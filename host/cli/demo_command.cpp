@@ -1,6 +1,7 @@
 // tetrapulse demo: the virtual rig end to end. Simulates paper-exp1 and swarm,
 // localizes them, evaluates against ground truth, prints the accuracy table and
-// writes a trajectory plot and an annotated frame strip per scenario.
+// writes a trajectory plot, an annotated frame strip and an overlay video (every
+// frame, measured and true poses drawn) per scenario.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "evaluation_report.hpp"
 #include "exit_codes.hpp"
 #include "vision_commands.hpp"
+#include "overlay_video.hpp"
 #include "pose_overlay.hpp"
 #include "progress_bar.hpp"
 #include "stop_signal.hpp"
@@ -54,10 +56,17 @@ struct Localized {
   bool stopped = false;  // by SIGINT or SIGTERM: poses.csv holds the frames so far
 };
 
-DatasetResult<Localized> localize_dataset(const RigDataset& dataset, const std::string& poses_csv, bool quiet) {
+// Also writes `overlay_path`: every frame with the measured poses and the true ones.
+DatasetResult<Localized> localize_dataset(const RigDataset& dataset, const std::string& poses_csv,
+                                          const std::string& overlay_path, bool quiet) {
   Localizer localizer(dataset.camera(), dataset.targets());
   auto writer = PoseWriter::open(poses_csv, PoseFormat::kCsv, dataset.targets());
   if (!writer) return tl::unexpected(writer.error());
+  auto overlay = OverlayVideo::create(overlay_path, dataset.camera(), dataset.targets());
+  if (!overlay) return tl::unexpected(overlay.error());
+  std::map<int64_t, std::vector<OverlayPose>> truth_of;
+  for (const GroundTruthRecord& g : dataset.groundtruth())
+    if (const Target* t = dataset.targets().find(g.target)) truth_of[g.frame].push_back({t, g.pose.pose()});
   auto source = dataset_frames(dataset);
   ProgressBar progress(source->count(), !quiet);
   Localized out;
@@ -76,11 +85,14 @@ DatasetResult<Localized> localize_dataset(const RigDataset& dataset, const std::
           out.rows.push_back(
               PoseRecord{f.frame, p.mid_exposure_ns, p.target_id, PoseFields::from(p.pose), p.markers, p.rms_px});
         }
+        const auto truth = truth_of.find(f.frame);
+        if (auto r = overlay->add(f, poses, truth == truth_of.end() ? std::vector<OverlayPose>{} : truth->second); !r) return r;
         progress.advance();
         return writer->flush();  // whole frames reach the file as they come
       },
       hooks);
   progress.finish();
+  if (auto r = overlay->close(); !r) return tl::unexpected(r.error());
   if (!frames) return tl::unexpected(frames.error());
   if (auto r = writer->close(); !r) return tl::unexpected(r.error());
   out.skipped = frames->skipped + dataset.skipped_lines().size();
@@ -181,7 +193,8 @@ DatasetResult<ScenarioOutcome> run_scenario(const std::string& name, const DemoA
   auto dataset = RigDataset::open(data);
   if (!dataset) return tl::unexpected(dataset.error());
   if (!a.quiet) fmt::print(stderr, "tetrapulse demo: {}: localizing\n", name);
-  auto localized = localize_dataset(*dataset, (fs::path(folder) / "poses.csv").string(), a.quiet);
+  auto localized =
+      localize_dataset(*dataset, (fs::path(folder) / "poses.csv").string(), (fs::path(folder) / "overlay.avi").string(), a.quiet);
   if (!localized) return tl::unexpected(localized.error());
   if (localized->stopped) {
     ScenarioOutcome stopped;
@@ -217,7 +230,7 @@ int run_demo(const DemoArgs& a, const DemoSimulation& simulate) {
     skipped += outcome->skipped;
     const Evaluation& e = outcome->evaluation;
     fmt::print("{}\n", evaluation_table(e, fmt::format("{} ({} frames)", name, outcome->frames)));
-    fmt::print("  wrote {0}/poses.csv, {0}/trajectory.png, {0}/overlay.png\n\n", outcome->folder);
+    fmt::print("  wrote {0}/poses.csv, {0}/trajectory.png, {0}/overlay.png, {0}/overlay.avi\n\n", outcome->folder);
     markdown += evaluation_markdown_row(e, name);
   }
   const std::string table = (fs::path(a.out) / "accuracy.md").string();

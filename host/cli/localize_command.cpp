@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "exit_codes.hpp"
 #include "live_localize.hpp"
+#include "overlay_video.hpp"
 #include "vision_commands.hpp"
 #include "progress_bar.hpp"
 #include "ros2_output.hpp"
@@ -39,6 +40,7 @@ struct LocalizeArgs {
   std::string camera_info;
   std::string targets;
   bool quiet = false;
+  std::string overlay;  // --overlay FILE: the frames with the poses drawn over them
   Ros2Args ros2;
   LiveArgs live;  // --camera aravis:ID | v4l2:DEV (live_localize.hpp)
 };
@@ -138,6 +140,12 @@ int run_localize(const LocalizeArgs& a) {
       });
     }
   }
+  std::optional<OverlayVideo> overlay;
+  if (!a.overlay.empty()) {
+    auto v = OverlayVideo::create(a.overlay, camera, targets);
+    if (!v) return fail(kExitUsage, v.error().what());
+    overlay = std::move(*v);
+  }
   const PoseFormat format = format_of(a.format);
   std::optional<PoseWriter> writer;
   if (!a.out.empty()) {
@@ -162,6 +170,9 @@ int run_localize(const LocalizeArgs& a) {
         std::fflush(stdout);
       }
     }
+    if (overlay) {
+      if (auto r = overlay->add(f, poses); !r) return r;
+    }
     // Each frame reaches the file whole before the next is read: a stop or a crash
     // keeps every frame so far.
     if (writer) {
@@ -180,6 +191,10 @@ int run_localize(const LocalizeArgs& a) {
   };
   auto frames = localize_frames(*source, localizer, on_frame, hooks);
   progress.finish();
+  if (overlay) {
+    if (auto r = overlay->close(); !r) return fail(kExitFailure, r.error().what());
+    if (!a.quiet) std::fprintf(stderr, "tetrapulse localize: overlay video: %zu frames written to %s\n", overlay->frames(), a.overlay.c_str());
+  }
   if (!frames) return fail(kExitBadInput, frames.error().what());
   const size_t skipped = frames->skipped + (dataset ? dataset->skipped_lines().size() : 0);
   size_t rows = 0;
@@ -235,6 +250,8 @@ void add_localize_command(CLI::App& app, int* result) {
   cmd->add_option("--camera-info", args->camera_info, "camera.yaml to use (default: DATASET/camera.yaml)");
   cmd->add_option("--targets", args->targets, "targets.yaml to use (default: DATASET/targets.yaml)");
   cmd->add_flag("--quiet", args->quiet, "No progress bar or summary");
+  cmd->add_option("--overlay", args->overlay,
+                  "Also write a video (.avi, .mp4, .mkv) of the frames with markers, target axes and ids drawn over them");
   add_ros2_options(cmd, &args->ros2);
   add_live_options(cmd, &args->live);
   cmd->add_option("--record", args->live.record, "With --camera aravis:|v4l2:, also record the frames as a rig dataset");

@@ -2,7 +2,7 @@
 # Live test (run inside tests/netns/isolated): the virtual rig's frames served as GVSP
 # packets by fake_rig_camera (LOST per thousand packets lost, packet resend answered
 # unless RESEND is "no"), localized live with `localize --camera aravis:127.0.0.1
-# --record`; then the recorded frames (the ones that arrived) localized offline.
+# --record --overlay`; then the recorded frames (the ones that arrived) localized offline.
 # Checks: the live poses equal the offline run's byte for byte; against the rig's
 # ground truth (live rows mapped to the rig's frames by their exposure stamps):
 # 0 misidentified rows and every target of targets.yaml identified; at least
@@ -22,8 +22,9 @@ for _ in $(seq 100); do grep -q serving fake.log && break; sleep 0.1; done
 live=0
 timeout 200 "$vision" localize --camera aravis:127.0.0.1 --frames "$frames" --camera-info sim/camera.yaml \
   --targets sim/targets.yaml --camera-clock-is-rig-time --frame-rate 100 --exposure-us 2000 --queue 1024 \
-  --record rec --out live.csv 2> live.log || live=$?
+  --record rec --out live.csv --overlay live.avi 2> live.log || live=$?
 cat live.log
+grep -q "overlay video: $frames frames written to live.avi" live.log || { echo "no overlay video of $frames frames"; exit 1; }
 kill -TERM $camera && wait $camera || true
 trap - EXIT
 cat fake.log

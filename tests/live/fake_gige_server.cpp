@@ -22,7 +22,7 @@ namespace {
 
 // Bootstrap registers (GigE Vision 2.x, table "bootstrap registers").
 constexpr uint32_t kGvcpCapability = 0x0934, kHeartbeatTimeout = 0x0938, kControlPrivilege = 0x0a00;
-constexpr uint32_t kStreamPort = 0x0d00, kStreamPacketSize = 0x0d04, kStreamAddress = 0x0d18;
+constexpr uint32_t kStreamPort = 0x0d00, kStreamAddress = 0x0d18;  // packet size (0x0d04): ArvFakeCamera reads it
 constexpr uint32_t kCapabilityWriteMemory = 1u << 1, kCapabilityPacketResend = 1u << 2;
 constexpr uint16_t kDiscoveryCmd = 0x0002, kResendCmd = 0x0040, kReadRegCmd = 0x0080, kWriteRegCmd = 0x0082,
                    kReadMemCmd = 0x0084, kWriteMemCmd = 0x0086;

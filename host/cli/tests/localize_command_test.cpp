@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "cli_run.hpp"
 #include "tetrapulse/datasets/dataset_io.hpp"
@@ -106,6 +107,35 @@ TEST_F(LocalizeCommand, LocalizesAndEvaluatesADataset) {
     EXPECT_EQ(f.exit_code, 0) << f.output;
     EXPECT_GT(lines(read(dir_.path(format))), 10u) << format;
   }
+}
+
+// --overlay: a video with one frame per frame localized, the poses drawn in colour
+// over the grey frames (the measured markers and id in blue: B well above R).
+TEST_F(LocalizeCommand, OverlayVideoHasEveryFrameWithThePosesDrawn) {
+  const std::string data = copy(), video = dir_.path("overlay.avi");
+  const CliRun r = run_cli("localize " + data + " --out " + dir_.path("poses.csv") + " --overlay " + video);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("overlay video: 24 frames written to " + video), std::string::npos) << r.output;
+  cv::VideoCapture in(video);
+  ASSERT_TRUE(in.isOpened()) << video;
+  EXPECT_EQ(in.get(cv::CAP_PROP_FRAME_COUNT), 24.0);
+  int frames = 0, drawn = 0;
+  for (cv::Mat f; in.read(f); ++frames) {
+    ASSERT_EQ(f.size(), cv::Size(752, 480));
+    ASSERT_EQ(f.channels(), 3);
+    int blue = 0;
+    for (int y = 0; y < f.rows; ++y)
+      for (int x = 0; x < f.cols; ++x) {
+        const cv::Vec3b p = f.at<cv::Vec3b>(y, x);
+        blue += p[0] > p[2] + 80;
+      }
+    drawn += blue > 50;
+  }
+  EXPECT_EQ(frames, 24);
+  EXPECT_GT(drawn, 10) << "frames with poses drawn";
+  const CliRun bad = run_cli("localize " + data + " --quiet --out " + dir_.path("p2.csv") + " --overlay " + dir_.path("x.txt"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("x.txt"), std::string::npos) << bad.output;
 }
 
 TEST_F(LocalizeCommand, MissingFilesAreNamed) {
