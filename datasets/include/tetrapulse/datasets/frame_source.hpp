@@ -3,7 +3,8 @@
 // video with a timestamps file, or a live V4L2 camera (both through OpenCV's
 // VideoCapture). Every frame carries its exposure in rig time (integer ns,
 // [timestamp_ns, timestamp_ns + exposure_ns), docs/rig-dataset.md). Images
-// come as 8- or 16-bit grey (colour is converted). A frame whose image cannot
+// come as 8- or 16-bit grey (colour is converted), except a dataset's whose
+// targets.yaml gives markers a colour: those stay 8-bit BGR. A frame whose image cannot
 // be had (missing, empty, truncated or undecodable file, not camera-sized, a bad
 // camera buffer) costs only itself: it comes with `unreadable` set and is skipped.
 #include <atomic>
