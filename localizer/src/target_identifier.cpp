@@ -251,8 +251,10 @@ bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypot
   Bearing4 x;
   Point4 X;
   std::vector<MarkerObservation> observations;
+  int measured = 0;
+  for (size_t m = 0; m < 4; ++m) measured += tracks[size_t(h->track[m])].measured;
+  if (measured < 3) return false;
   for (size_t m = 0; m < 4; ++m) {
-    if (!tracks[size_t(h->track[m])].measured) return false;
     const Eigen::Vector2d& px = tracks[size_t(h->track[m])].pixel;
     if (!camera_.unproject(px, &x[m])) return false;
     X[m] = target.markers[m].position_m;

@@ -15,10 +15,12 @@
 //             needs no read bits; geometry then names its markers.
 //   geometry  the tracks' pixels this frame must be explained by one pose of the
 //             target: known-correspondence P4P (p4p.hpp), refined, with an RMS
-//             reprojection error of at most max_rms_px. Only blobs measured in
-//             this exposure count: a dark track's extrapolated pixel or a part of
-//             a merged blob can let a permutation of a target's markers (or
-//             another target's marker) fit, so such a hypothesis waits.
+//             reprojection error of at most max_rms_px. At least three of the
+//             pixels must be blobs measured in this exposure: dark tracks'
+//             extrapolated pixels or parts of merged blobs can let a permutation
+//             of a target's markers (or another target's marker) fit, so such a
+//             hypothesis waits (a fourth may be a dark track's prediction: on_off
+//             codes rarely light all four at once).
 // A hypothesis is accepted when its code cost (mismatches, code_match.hpp) is
 // within the error budget, it has read enough bits, its geometry holds, and no
 // rival comes close: a rival is any other hypothesis for the same target or
