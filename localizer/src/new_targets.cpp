@@ -20,7 +20,9 @@ std::vector<size_t> NewTargets::identify(const BlobTracker& tracker, CodeReading
     c.track = &track;
     c.bits = &reading.bits(track.id());
     const TrackSample& newest = track.history().newest();
-    c.pixel = newest.frame == stamp.frame && newest.detected ? newest.centroid : track.predict(stamp.middle_ns());
+    const bool seen = newest.frame == stamp.frame && newest.detected;
+    c.pixel = seen ? newest.centroid : track.predict(stamp.middle_ns());
+    c.measured = seen && !newest.merged;
     c.radius_px = track.last_blob().radius;
     if (frequency_coded_) c.frequency_code = reading.frequency_code(track.id());
     candidates_.push_back(c);

@@ -160,13 +160,21 @@ void TargetIdentifier::score_codes(Hypothesis* h) const {
 
 void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted) {
   hypotheses_.clear();
+  unweighed_.clear();
   const size_t n = tracks.size();
   if (n < 4) return;
+  // Candidates of each marker of each wanted target: tracks whose bits do not rule its code out.
+  struct Wanted {
+    size_t target = 0;
+    std::array<std::vector<int>, 4> candidates;
+    double combinations = 0;  // before the distance test
+  };
+  std::vector<Wanted> order;
   for (size_t t = 0; t < targets_.targets.size(); ++t) {
     if (t >= wanted.size() || !wanted[t]) continue;
+    Wanted w;
+    w.target = t;
     const std::array<int, 4>& code = code_of_[t];
-    // Candidates of each marker: tracks whose bits do not rule its code out.
-    std::array<std::vector<int>, 4> candidates;
     const std::array<int, 4>& frequency = frequency_of_[t];
     for (size_t m = 0; m < 4; ++m)
       for (size_t i = 0; i < n; ++i) {
@@ -177,25 +185,40 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
           const int counted = free_running_ ? 0 : tc.matches[size_t(code[m])].counted;
           if (tc.best_cost[size_t(code[m])] > allowed_errors(counted) + options_.code_margin) continue;
         }
-        candidates[m].push_back(int(i));
+        w.candidates[m].push_back(int(i));
       }
+    w.combinations = 1;
+    for (const auto& c : w.candidates) w.combinations *= double(c.size());
+    if (w.combinations > 0) order.push_back(std::move(w));
+  }
+  // The budget goes to the targets with the fewest combinations first: a target
+  // whose codes have not narrowed its tracks yet (too many to weigh) waits for
+  // more bits without holding up the others. A target left out is no rival of
+  // any hypothesis weighed; its own tracks stay free for it (a hypothesis of
+  // another target on them must still beat the codes).
+  std::stable_sort(order.begin(), order.end(),
+                   [](const Wanted& a, const Wanted& b) { return a.combinations < b.combinations; });
+  for (const Wanted& w : order) {
+    const size_t t = w.target;
     // Tracks of one target lie within its image: at most its size over its markers' size, doubled.
     const auto near = [&](int a, int b) {
       const double r = std::max(tracks[size_t(a)].radius_px, tracks[size_t(b)].radius_px);
       return (tracks[size_t(a)].pixel - tracks[size_t(b)].pixel).norm() <= 2 * extent_ratio_[t] * r + 10;
     };
+    const size_t before = hypotheses_.size();
+    bool over = false;
     Hypothesis h;
     h.target = t;
-    for (int a : candidates[0])
-      for (int b : candidates[1]) {
-        if (b == a || !near(a, b)) continue;
-        for (int c : candidates[2]) {
-          if (c == a || c == b || !near(a, c) || !near(b, c)) continue;
-          for (int d : candidates[3]) {
+    for (int a : w.candidates[0])
+      for (int b : w.candidates[1]) {
+        if (over || b == a || !near(a, b)) continue;
+        for (int c : w.candidates[2]) {
+          if (over || c == a || c == b || !near(a, c) || !near(b, c)) continue;
+          for (int d : w.candidates[3]) {
             if (d == a || d == b || d == c || !near(a, d) || !near(b, d) || !near(c, d)) continue;
             if (hypotheses_.size() >= options_.max_hypotheses) {
-              hypotheses_.clear();  // too many to weigh: wait for more bits
-              return;
+              over = true;
+              break;
             }
             h.track = {a, b, c, d};
             score_codes(&h);
@@ -203,6 +226,21 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
           }
         }
       }
+    if (over) {
+      hypotheses_.resize(before);
+      Unweighed u;
+      u.target = t;
+      for (size_t m = 0; m < 4; ++m) {
+        const int c = code_of_[t][m];
+        u.least[m] = std::numeric_limits<double>::infinity();
+        for (int i : w.candidates[m]) {
+          const double cost = c >= 0 ? track_codes_[size_t(i)].best_cost[size_t(c)] : 0.0;
+          u.candidates[m].emplace_back(i, cost);
+          u.least[m] = std::min(u.least[m], cost);
+        }
+      }
+      unweighed_.push_back(std::move(u));
+    }
   }
 }
 
@@ -213,6 +251,9 @@ bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypot
   Bearing4 x;
   Point4 X;
   std::vector<MarkerObservation> observations;
+  int measured = 0;
+  for (size_t m = 0; m < 4; ++m) measured += tracks[size_t(h->track[m])].measured;
+  if (measured < 3) return false;
   for (size_t m = 0; m < 4; ++m) {
     const Eigen::Vector2d& px = tracks[size_t(h->track[m])].pixel;
     if (!camera_.unproject(px, &x[m])) return false;
@@ -256,20 +297,36 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
     if (target_blocked[h.target]) continue;
     if (std::any_of(h.track.begin(), h.track.end(), [&](int k) { return track_blocked[size_t(k)]; })) continue;
     if (!codes_accept(h) || !geometry(tracks, &h)) continue;
-    // Rivals: every other hypothesis touching this one's target or tracks that the
-    // codes do not clearly reject and whose geometry is about as good.
-    const bool code_ambiguous = h.shifted_cost < h.cost + margin;
-    std::vector<size_t> group{i};
-    for (size_t j = 0; j < hypotheses_.size() && !code_ambiguous; ++j) {
-      Hypothesis& r = hypotheses_[j];
-      if (!(r.cost < h.cost + margin)) break;  // sorted by cost
-      if (j == i || !h.shares(r)) continue;
-      if (geometry(tracks, &r) && r.rms_px < h.rms_px + options_.geometry_margin_px) group.push_back(j);
+    if (unweighed_rival(h)) {
+      // A rival not weighed: wait, as for any rival too close to call.
+      target_blocked[h.target] = 1;
+      for (int k : h.track) track_blocked[size_t(k)] = 1;
+      continue;
     }
-    target_blocked[h.target] = 1;
-    for (int k : h.track) track_blocked[size_t(k)] = 1;
-    if (code_ambiguous) continue;
+    // Rivals: every other hypothesis touching this one's target or tracks that the
+    // codes do not clearly reject and whose geometry is about as good. Codes tied,
+    // the best geometry among them is the one whose rivals count.
+    const bool code_ambiguous = h.shifted_cost < h.cost + margin;
     size_t chosen = i;
+    std::vector<size_t> group;
+    for (int walk = 0; walk < 8 && !code_ambiguous; ++walk) {
+      group = rivals_of(tracks, chosen, margin);
+      size_t best = chosen;
+      for (size_t j : group)
+        if (hypotheses_[j].rms_px < hypotheses_[best].rms_px) best = j;
+      if (best == chosen) break;
+      chosen = best;
+    }
+    const Hypothesis& best = hypotheses_[chosen];
+    const bool chosen_free = chosen == i || (!target_blocked[best.target] &&
+                                             std::none_of(best.track.begin(), best.track.end(),
+                                                          [&](int k) { return track_blocked[size_t(k)]; }));
+    for (const Hypothesis* b : {static_cast<const Hypothesis*>(&hypotheses_[i]), &best}) {
+      target_blocked[b->target] = 1;
+      for (int k : b->track) track_blocked[size_t(k)] = 1;
+    }
+    if (code_ambiguous || !chosen_free) continue;
+    if (chosen != i && (best.shifted_cost < best.cost + margin || !codes_accept(best) || unweighed_rival(best))) continue;
     if (group.size() > 1) {
       // Too close to call in this frame: the residuals of the same hypotheses over
       // the frames they have lasted decide, or the wait goes on.
@@ -294,10 +351,55 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
     }
     out.push_back(id);
   }
-  // Evidence lasts while its hypothesis is weighed frame after frame.
-  for (auto it = geometry_evidence_.begin(); it != geometry_evidence_.end();)
-    it = it->second.touched ? std::next(it) : geometry_evidence_.erase(it);
+  // Evidence lasts while its hypothesis is weighed frame after frame, and through
+  // frames where some of its tracks are dark or merged (no geometry to weigh then);
+  // it ends with a track that ended or was claimed, or a frame all four were
+  // measured in and it was not weighed.
+  std::map<int64_t, bool> measured;
+  for (const CandidateTrack& c : tracks) measured[c.track->id()] = c.measured;
+  for (auto it = geometry_evidence_.begin(); it != geometry_evidence_.end();) {
+    bool keep = it->second.touched;
+    if (!keep) {
+      bool all_there = true, all_measured = true;
+      for (int64_t id : it->first.second) {
+        const auto m = measured.find(id);
+        all_there = all_there && m != measured.end();
+        all_measured = all_measured && m != measured.end() && m->second;
+      }
+      keep = all_there && !all_measured;
+    }
+    it = keep ? std::next(it) : geometry_evidence_.erase(it);
+  }
   return out;
+}
+
+std::vector<size_t> TargetIdentifier::rivals_of(const std::vector<CandidateTrack>& tracks, size_t i, double margin) {
+  std::vector<size_t> group{i};
+  const Hypothesis h = hypotheses_[i];
+  for (size_t j = 0; j < hypotheses_.size(); ++j) {
+    Hypothesis& r = hypotheses_[j];
+    if (!(r.cost < h.cost + margin)) break;  // sorted by cost
+    if (j == i || !h.shares(r)) continue;
+    if (geometry(tracks, &r) && r.rms_px < h.rms_px + options_.geometry_margin_px) group.push_back(j);
+  }
+  return group;
+}
+
+bool TargetIdentifier::unweighed_rival(const Hypothesis& h) const {
+  const double margin = coded_ ? options_.code_margin : std::numeric_limits<double>::infinity();
+  for (const Unweighed& u : unweighed_) {
+    if (u.target == h.target) continue;
+    double all_least = 0;
+    for (double l : u.least) all_least += l;
+    for (size_t m = 0; m < 4; ++m)
+      for (const auto& [track, cost] : u.candidates[m]) {
+        if (std::find(h.track.begin(), h.track.end(), track) == h.track.end()) continue;
+        // The least any of u's hypotheses with this track as marker m can cost
+        // (free-running: the phases' minima bound the sum from below).
+        if (cost + (all_least - u.least[m]) < h.cost + margin) return true;
+      }
+  }
+  return false;
 }
 
 bool TargetIdentifier::codes_accept(const Hypothesis& h) const {

@@ -56,8 +56,10 @@ struct Watch {
   int identifications = 0;                         // all reported, also repeats
 };
 
+// unmeasured: tracks (by id) whose pixels are handed over as not measured this
+// frame (as a dark track's prediction or a merged blob's part is).
 Watch watch(const CameraModel& camera, const TargetsFile& targets, const std::vector<Shown>& shown, int frames,
-        uint64_t seed, IdentificationOptions options = {}) {
+        uint64_t seed, IdentificationOptions options = {}, const std::vector<int64_t>& unmeasured = {}) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0, 1);
   BlobTracker tracker;
@@ -96,6 +98,7 @@ Watch watch(const CameraModel& camera, const TargetsFile& targets, const std::ve
       c.bits = &bits[track.id()];
       c.pixel = track.position();
       c.radius_px = track.last_blob().radius;
+      c.measured = std::find(unmeasured.begin(), unmeasured.end(), track.id()) == unmeasured.end();
       candidates.push_back(c);
       out.track_pixel[track.id()] = track.position();
     }
@@ -181,6 +184,25 @@ TEST_F(Identify, CodesBeyondTheirRadiusAreNotIdentified) {
   shifted.origin_ns += 5 * kFrameNs;
   const Watch r = watch(camera, targets, {{0, two_poses()[0], shifted, {}}}, 48, 3);
   EXPECT_EQ(r.identifications, 0);
+}
+
+TEST_F(Identify, APixelNotMeasuredThisFrameNeverDecidesGeometry) {
+  // Two markers' pixels are never blobs of the frame (dark tracks' extrapolations,
+  // merged blobs' parts: where a permutation of the markers can fit): the codes
+  // fit, but the target waits. With one of them measured it is identified.
+  const TargetsFile targets = two_coded_targets();
+  const CodeClock clock = CodeClock::from(targets.timebase);
+  const Shown s{0, two_poses()[0], clock, {}};
+  const Watch seen = watch(camera, targets, {s}, 36, 5);
+  expect_correct(camera, targets, s, seen);
+  ASSERT_FALSE(seen.track_pixel.empty());
+  std::vector<int64_t> ids;
+  for (const auto& [id, px] : seen.track_pixel) ids.push_back(id);
+  ASSERT_GE(ids.size(), 4u);
+  const Watch unseen = watch(camera, targets, {s}, 36, 5, {}, {ids[0], ids[1]});
+  EXPECT_EQ(unseen.identifications, 0);
+  const Watch one_unseen = watch(camera, targets, {s}, 36, 5, {}, {ids[0]});
+  expect_correct(camera, targets, s, one_unseen);
 }
 
 TEST_F(Identify, TwoTargetsAlikeInCodesAndGeometryAreNeverReported) {

@@ -15,7 +15,12 @@
 //             needs no read bits; geometry then names its markers.
 //   geometry  the tracks' pixels this frame must be explained by one pose of the
 //             target: known-correspondence P4P (p4p.hpp), refined, with an RMS
-//             reprojection error of at most max_rms_px.
+//             reprojection error of at most max_rms_px. At least three of the
+//             pixels must be blobs measured in this exposure: dark tracks'
+//             extrapolated pixels or parts of merged blobs can let a permutation
+//             of a target's markers (or another target's marker) fit, so such a
+//             hypothesis waits (a fourth may be a dark track's prediction: on_off
+//             codes rarely light all four at once).
 // A hypothesis is accepted when its code cost (mismatches, code_match.hpp) is
 // within the error budget, it has read enough bits, its geometry holds, and no
 // rival comes close: a rival is any other hypothesis for the same target or
@@ -34,8 +39,14 @@
 // over n >= min_geometry_frames frames: the log-likelihood ratio under Gaussian
 // pixel noise whose level the best hypothesis' own residuals give.
 //
+// Of hypotheses tied in codes, the best geometry is weighed first: its rivals are
+// those within geometry_margin_px of it.
 // Hypotheses need four tracks; tracks too far apart for one target (judged from
-// their blob sizes and the marker diameter) are never combined.
+// their blob sizes and the marker diameter) are never combined. At most
+// max_hypotheses are weighed a call, given to the targets with the fewest
+// combinations first; a target left over (its codes have not narrowed its tracks
+// yet) waits, and blocks any hypothesis that one of its own could rival on a
+// shared track (a lower bound of its code cost within code_margin).
 // Pixels in the OpenCV convention; poses as pose.hpp; times in rig-time ns.
 #include <array>
 #include <cstdint>
@@ -80,6 +91,7 @@ struct CandidateTrack {
   const TrackBits* bits = nullptr;                    // read bits of track->history()
   Eigen::Vector2d pixel = Eigen::Vector2d::Zero();    // blob this frame, or the track's prediction
   double radius_px = 0;                                // blob radius, for the size of its target
+  bool measured = true;     // `pixel` is an unmerged blob of this frame (not a prediction, not a split part)
   int frequency_code = -1;  // rig_codes() index of the frequency code this track carries (-1: none decided)
 };
 
@@ -123,6 +135,11 @@ class TargetIdentifier {
   double allowed_errors(int counted) const;
   bool has_binary_codes(size_t target) const;
   bool codes_accept(const Hypothesis& h) const;
+  // hypotheses_[i] (its geometry holding) and its rivals (see above).
+  std::vector<size_t> rivals_of(const std::vector<CandidateTrack>& tracks, size_t i, double margin);
+  // Whether a target left unweighed this call (too many combinations) might have
+  // a hypothesis on one of h's tracks costing less than h's cost + code_margin.
+  bool unweighed_rival(const Hypothesis& h) const;
   // Of hypotheses_[group], the one the residuals of many frames pick (see above), if any yet.
   std::optional<size_t> geometry_winner(const std::vector<CandidateTrack>& tracks, const std::vector<size_t>& group);
 
@@ -137,6 +154,14 @@ class TargetIdentifier {
   std::vector<double> extent_ratio_;             // target's largest marker distance / marker radius
   std::vector<TrackCodes> track_codes_;
   std::vector<Hypothesis> hypotheses_;
+  // Targets with too many combinations to weigh in this call: each marker's
+  // candidate tracks with their code cost, and the least cost per marker.
+  struct Unweighed {
+    size_t target = 0;
+    std::array<std::vector<std::pair<int, double>>, 4> candidates;
+    std::array<double, 4> least{};
+  };
+  std::vector<Unweighed> unweighed_;
   std::map<GeometryKey, GeometryEvidence> geometry_evidence_;
   size_t last_hypotheses_ = 0;
 };
