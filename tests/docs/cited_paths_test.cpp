@@ -1,9 +1,10 @@
 // Every repository path a document or a source comment cites exists (issue 13: 28 files
 // cited the dataset contract under a folder "spec", which is docs/rig-dataset.md). A
-// citation is a word that starts with a top-level part ("docs/", "protocol/", ...) or any
+// citation is a word that starts with a top-level part (such as "docs/" or "protocol/") or any
 // relative path of a document or source file; it resolves when some file or folder of the
 // tree is it or ends with it (the top, a part's folder, a public header under
-// include/tetrapulse/: "host/rig_clock.hpp"). Placeholders ("...", "NAME") are not citations.
+// include/tetrapulse/: "host/rig_clock.hpp"). Words that hold an ellipsis or an upper-case
+// stand-in for a name or a number are templates, not citations.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -62,9 +63,10 @@ std::vector<std::string> tree_paths() {
   return out;
 }
 
-// Files a command writes (boards/target-N.yaml, out/demo/...) are outputs, not citations.
+// Files a command writes (a board's target file, the demo's output folder) are outputs, not citations.
 bool resolves(const std::string& cited, const std::vector<std::string>& tree) {
-  if (cited.find("...") != std::string::npos || std::regex_search(cited, std::regex("(^|[/_.-])(NAME|ID|N|X)([/_.-]|$)"))) return true;
+  static const std::regex kStandIn("(^|[/_.-])(NAME|ID|N|X)([/_.-]|$)");
+  if (cited.find("...") != std::string::npos || std::regex_search(cited, kStandIn)) return true;
   if (cited.rfind("boards/", 0) == 0 || cited.rfind("out/", 0) == 0) return true;
   const std::string tail = "/" + cited;
   for (const std::string& p : tree) {

@@ -81,6 +81,15 @@ int64_t frequency_latency_bound(const sim::Scenario& scenario) {
 
 void PrintTo(const Acceptance& a, std::ostream* os) { *os << a.scenario; }
 
+// A row's test name: its scenario's, with '_' for '-'.
+template <typename Row>
+std::string test_name(const ::testing::TestParamInfo<Row>& param) {
+  std::string name = param.param.scenario;
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
+}
+
 class Scenarios : public ::testing::TestWithParam<Acceptance> {};
 
 TEST_P(Scenarios, MeetTheAcceptanceLines) {
@@ -150,13 +159,7 @@ TEST_P(Scenarios, MeetTheAcceptanceLines) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Builtin, Scenarios, ::testing::ValuesIn(kScenarios),
-                         [](const ::testing::TestParamInfo<Acceptance>& param) {
-                           std::string name = param.param.scenario;
-                           for (char& c : name)
-                             if (c == '-') c = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Builtin, Scenarios, ::testing::ValuesIn(kScenarios), test_name<Acceptance>);
 
 void PrintTo(const OpenRow& r, std::ostream* os) { *os << r.scenario; }
 
@@ -179,13 +182,7 @@ TEST_P(OpenScenarios, HoldWhatTheyReachToday) {
   EXPECT_LE(all.misidentified, r.max_misidentified);
 }
 
-INSTANTIATE_TEST_SUITE_P(Open, OpenScenarios, ::testing::ValuesIn(kOpenRows),
-                         [](const ::testing::TestParamInfo<OpenRow>& param) {
-                           std::string name = param.param.scenario;
-                           for (char& c : name)
-                             if (c == '-') c = '_';
-                           return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(Open, OpenScenarios, ::testing::ValuesIn(kOpenRows), test_name<OpenRow>);
 
 TEST(Scenarios, PaperExp1WithKalmanPredictionAndKneipP3P) {
   // The options beside the defaults: the constant-velocity Kalman filter and the
