@@ -1,6 +1,6 @@
 # Quick start: `make demo` (the virtual rig end to end) and `make check` (every test).
 # Each target installs what it needs (scripts/setup) and builds what is out of date.
-.PHONY: demo check setup build firmware asan test test-asan clean
+.PHONY: demo check setup configure-all build firmware asan test test-asan clean
 
 BUILD := build
 CTEST_JOBS ?= $(shell nproc)
@@ -8,8 +8,14 @@ CTEST_JOBS ?= $(shell nproc)
 setup:
 	@scripts/setup
 
+# make build (and check) configures with tests and benchmarks, also in a folder the demo
+# configured without them.
 $(BUILD)/default/build.ninja: | setup
 	@cmake --preset default >/dev/null
+configure-all: $(BUILD)/default/build.ninja
+	@grep -q '^TETRAPULSE_TESTS:BOOL=ON' $(BUILD)/default/CMakeCache.txt && \
+	  grep -q '^TETRAPULSE_BENCH:BOOL=ON' $(BUILD)/default/CMakeCache.txt || \
+	  cmake --preset default -DTETRAPULSE_TESTS=ON -DTETRAPULSE_BENCH=ON >/dev/null
 
 $(BUILD)/firmware/build.ninja: | setup
 	@cmake --preset firmware >/dev/null
@@ -17,7 +23,7 @@ $(BUILD)/firmware/build.ninja: | setup
 $(BUILD)/asan/build.ninja: | setup
 	@cmake --preset asan >/dev/null
 
-build: setup $(BUILD)/default/build.ninja
+build: setup configure-all
 	@cmake --build --preset default
 
 firmware: setup $(BUILD)/firmware/build.ninja
@@ -34,10 +40,14 @@ test-asan: asan
 
 check: test test-asan
 
-# The demo builds only the program it runs, tetrapulse-vision (`tetrapulse demo` is
-# that program's), in the same build folder: not the board commands, tests and
-# benchmarks, which `make build` and `make check` build.
-demo: setup $(BUILD)/default/build.ninja
+# The demo installs only the packages it needs (scripts/setup demo) and builds only the
+# program it runs, tetrapulse-vision (`tetrapulse demo` is that program's), in the same
+# build folder: a folder it configures itself has no tests and benchmarks, which
+# `make build` and `make check` add.
+demo:
+	@scripts/setup demo
+	@[ -f $(BUILD)/default/build.ninja ] || \
+	  cmake --preset default -DTETRAPULSE_TESTS=OFF -DTETRAPULSE_BENCH=OFF >/dev/null
 	@cmake --build --preset default --target tetrapulse-vision
 	@scripts/demo $(BUILD)/default
 
