@@ -147,7 +147,9 @@ vm_base_initramfs() {
     vm_pack "$tmp/root" "$tmp/base.cpio.gz"
     mv -f "$tmp/base.cpio.gz" "$out"
     rm -rf "$tmp"
-    find "$cache/initramfs" -name 'base-*.cpio.gz' -mtime +7 -delete
+    # Only the packed files at the top: another test's boot may be staging
+    # (and deleting) its own stage.* folder underneath at the same moment.
+    find "$cache/initramfs" -maxdepth 1 -name 'base-*.cpio.gz' -mtime +7 -delete
   fi
   touch "$out"
   echo "$out"
