@@ -90,6 +90,7 @@ void BlobTracker::add_detection(BlobTrack* track, const ExposureStamp& frame, co
   s.merged = blob.merged;
   s.merge_group = blob.merge_group;
   s.merge_parts = blob.merge_parts;
+  s.streak_half_px = blob.bloomed ? 0.5 * blob.bbox.height : 0;
   s.measured = !blob.merged;  // its light is partly another marker's: no bit from it
   s.centroid = blob.centroid;
   track->history_.push(s);

@@ -4,6 +4,18 @@
 
 namespace tetrapulse::localizer_internal {
 
+double aperture_radius_for(const BlobTrack& track) {
+  constexpr double kMarginPx = 2.5, kMaxPx = 64;
+  constexpr size_t kRecent = 16;
+  const Blob& last = track.last_blob();
+  double extent = last.radius;
+  const auto& history = track.history();
+  for (size_t i = history.size() > kRecent ? history.size() - kRecent : 0; i < history.size(); ++i)
+    extent = std::max(extent, history[i].streak_half_px);
+  if (last.bloomed && last.clipped) extent = std::max(extent, 1.5 * 0.5 * last.bbox.height);
+  return std::clamp(extent + kMarginPx, 3.0, kMaxPx);
+}
+
 void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const CameraModel& camera, int64_t mid_ns,
                int64_t frame_period_ns, double min_roi_radius_px, RoiPlan* plan) {
   plan->rois.clear();
@@ -15,7 +27,7 @@ void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const Cam
     roi.tag = track.id();
     roi.center = track.predict(mid_ns);
     roi.radius = tc.gate_radius_px + tc.gate_growth_px_per_frame * track.missed();
-    roi.aperture_radius = std::max(3.0, track.last_blob().radius + 2.5);
+    roi.aperture_radius = aperture_radius_for(track);
     if (const auto o = roster.owner(track.id()); o && roster[o->target].predictor.poses() >= 2) {
       Eigen::Vector2d px;
       if (roster.project_marker(o->target, o->marker, &px)) {

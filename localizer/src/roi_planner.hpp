@@ -35,6 +35,14 @@ struct RoiPlan {
   std::vector<TrackGate> gates;     // tracks gated by their target's predicted pose
 };
 
+// The aperture a track's next window needs around its blob (BlobRoi::aperture_radius),
+// pixels: the spot's radius plus a margin, or for a bloomed marker half the
+// longest streak it showed in the last 16 frames (a two_level 1 bit blooms longer
+// than a 0), so that the window never cuts a streak's ends off: a cut end moves
+// the centroid along the column by up to a pixel. A streak the last window cut
+// (Blob::clipped) was longer than it looked, and the window grows by half again.
+double aperture_radius_for(const BlobTrack& track);
+
 void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const CameraModel& camera, int64_t mid_ns,
                int64_t frame_period_ns, double min_roi_radius_px, RoiPlan* plan);
 

@@ -49,6 +49,10 @@ struct TrackSample {
   bool merged = false;    // a part of a blob split between predicted markers (Blob::merged): not measured
   int merge_group = 0;    // merged: Blob::merge_group and merge_parts
   int merge_parts = 0;
+  // Blob::bloomed: half the streak's length along the column (half its box's
+  // height), pixels; 0 otherwise. Two-level codes bloom short in a 0 bit and long
+  // in a 1, so the window around the next blob is sized by the longest recent one.
+  double streak_half_px = 0;
   // The blob's centroid, or the position predicted for this frame when no blob
   // was found; pixels.
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
