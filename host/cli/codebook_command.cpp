@@ -183,15 +183,16 @@ int run_generate(const GenerateArgs& a) {
 
   if (a.capacity) {
     std::vector<uint64_t> codes(protocol::CodebookWorkspace::kMaxCandidates);
-    const protocol::Result<size_t> n = protocol::find_largest(*spec, codes.data(), codes.size(), *ws);
+    protocol::CodebookSearchStats stats;
+    const protocol::Result<size_t> n = protocol::find_largest(*spec, codes.data(), codes.size(), *ws, &stats);
     if (!n.ok()) {
       codebook_error(fmt::format("{}: {}", describe_codebook_spec(*spec), protocol::check_spec(*spec).detail));
       return kExitUsage;
     }
     fmt::print(
-        "{}: the search found {} codes ({} targets with a code per marker, {} with a code per target); "
-        "more may exist\n",
-        describe_codebook_spec(*spec), *n, *n / kMarkers, *n);
+        "{}: the search found {} codes ({} targets with a code per marker, {} with a code per target); {}\n",
+        describe_codebook_spec(*spec), *n, *n / kMarkers, *n,
+        stats.proven_maximum ? "no larger set exists" : "more may exist");
     return kExitOk;
   }
 

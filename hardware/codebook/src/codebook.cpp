@@ -35,6 +35,7 @@ Result<size_t> search(const CodebookSpec& spec, uint32_t target, size_t limit, u
       s.candidates_sampled = true;
     }
     found = search_independent_set(conflict, ws, n, rng, target, spec.search_iterations, &s.iterations);
+    found = exact_independent_set(ws, n, target, found, &s.proven_maximum);
   }
 
   const uint32_t L = spec.length;

@@ -43,4 +43,17 @@ bool build_conflict_graph(const ConflictTest& conflict, CodebookWorkspace& ws, u
 uint32_t search_independent_set(const ConflictTest& conflict, CodebookWorkspace& ws, uint32_t n, SplitMix64& rng,
                                 uint32_t target, uint32_t iterations, uint32_t* used);
 
+// Graphs up to this many vertices are searched exactly after the local search.
+constexpr uint32_t kMaxExactVertices = 64;
+// Branch-and-bound nodes before the exact step gives up (far above what any
+// 64-vertex conflict graph of the search has needed).
+constexpr uint64_t kExactNodeBudget = uint64_t{1} << 24;
+
+// When n <= kMaxExactVertices and the local search holds found < target, a
+// branch and bound over the graph of ws.first_neighbour / ws.neighbours for
+// an independent set of min(maximum, target) vertices; replaces ws.best when
+// larger and returns its size (else `found`). *proven: the bound finished
+// below the target, so the returned size is the maximum.
+uint32_t exact_independent_set(CodebookWorkspace& ws, uint32_t n, uint32_t target, uint32_t found, bool* proven);
+
 }  // namespace tetrapulse::protocol

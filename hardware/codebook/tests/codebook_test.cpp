@@ -394,10 +394,42 @@ RC_GTEST_PROP(CodebookProperty, FindsTheExactMaximumOfSmallInstances, ()) {
   spec.min_distance = std::min(spec.min_distance, spec.length);
   spec.min_weight = std::min(spec.min_weight, spec.length);
   spec.max_weight = std::max(spec.max_weight, spec.min_weight);
-  spec.search_iterations = 3000;
+  spec.search_iterations = *rc::gen::inRange<uint32_t>(0, 3000);
   ExactMaximum exact(spec);
-  const std::vector<uint64_t> most = largest(spec);
-  RC_ASSERT(most.size() == exact.solve());
+  std::vector<uint64_t> most(64);
+  CodebookSearchStats stats;
+  const Result<size_t> n = find_largest(spec, most.data(), most.size() + 1, workspace(), &stats);
+  RC_ASSERT(n.ok());
+  RC_ASSERT(*n == exact.solve());
+  RC_ASSERT(validate(spec, most.data(), *n).ok());
+  RC_ASSERT(stats.proven_maximum == (stats.candidates > 0));
+}
+
+// The case that found the local search stalled (CI, rapidcheck): all 26
+// odd-weight words are a maximal set no swap leaves; the 30 even-weight words
+// are the maximum.
+TEST(Codebook, SmallInstancesReachTheMaximumWhereTheLocalSearchStalls) {
+  CodebookSpec spec;
+  spec.length = 6;
+  spec.min_distance = 2;
+  spec.min_weight = 1;
+  spec.max_weight = 4;
+  spec.seed = 1139;
+  spec.search_iterations = 3000;
+  std::vector<uint64_t> most(64);
+  CodebookSearchStats stats;
+  const Result<size_t> n = find_largest(spec, most.data(), most.size(), workspace(), &stats);
+  ASSERT_TRUE(n.ok());
+  EXPECT_EQ(*n, 30u);
+  EXPECT_TRUE(stats.proven_maximum);
+  for (size_t i = 0; i < *n; ++i) EXPECT_EQ(word_weight(most[i]) % 2, 0u) << i;
+  // generate() takes the same step and stops at the count.
+  spec.count = 28;
+  std::vector<uint64_t> some(spec.count);
+  const Result<size_t> m = generate(spec, some.data(), some.size(), workspace());
+  ASSERT_TRUE(m.ok());
+  EXPECT_EQ(*m, 28u);
+  EXPECT_TRUE(validate(spec, some.data(), *m).ok());
 }
 
 // Pins the algorithm (SPEC.md §8): a seed must keep naming the same codebook

@@ -303,6 +303,12 @@ TEST(CodebookCommand, CapacityReportsWhatTheSearchFound) {
   const CommandRun r = codebook(dir, {"--capacity", "--length", "7", "--weights", "any", "--max-zero-run", "none"});
   ASSERT_EQ(r.exit, kExitOk) << r.err;
   EXPECT_NE(r.out.find("found 16 codes"), std::string::npos) << r.out;  // A(7,3) = 16
+  EXPECT_NE(r.out.find("more may exist"), std::string::npos) << r.out;   // 128 candidates: no proof
+  // 32 candidates: the exact step proves the maximum, A(5,3) = 4.
+  const CommandRun small = codebook(dir, {"--capacity", "--length", "5", "--weights", "any", "--max-zero-run", "none"});
+  ASSERT_EQ(small.exit, kExitOk) << small.err;
+  EXPECT_NE(small.out.find("found 4 codes"), std::string::npos) << small.out;
+  EXPECT_NE(small.out.find("no larger set exists"), std::string::npos) << small.out;
 }
 
 // --family frequency: square waves of different lengths for one camera, separable at it.

@@ -107,6 +107,7 @@ struct CodebookSearchStats {
   uint32_t candidates = 0;       // admissible words the search chose among
   bool candidates_sampled = false;  // true: a seeded sample of them (too many to use all)
   uint32_t iterations = 0;       // local-search iterations run
+  bool proven_maximum = false;   // the exact step (at most 64 candidates) proved no larger set exists
 };
 
 // Writes min(spec.count, found) codes to out[0..), in string order, and returns
@@ -119,7 +120,8 @@ Result<size_t> generate(const CodebookSpec& spec, uint64_t* out, size_t capacity
 
 // The largest set the search finds within spec.search_iterations (spec.count is
 // ignored), up to `capacity` codes, in string order. A lower bound on the true
-// maximum, not a proof of it.
+// maximum, not a proof of it, except with at most 64 candidates, where an exact
+// step decides (stats->proven_maximum).
 Result<size_t> find_largest(const CodebookSpec& spec, uint64_t* out, size_t capacity, CodebookWorkspace& workspace,
                             CodebookSearchStats* stats = nullptr);
 
