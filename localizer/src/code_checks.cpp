@@ -20,6 +20,16 @@ bool CodeChecks::has_binary_codes(size_t t) const {
   return false;
 }
 
+bool followed_since(const BlobTrack& track, int64_t frame) {
+  if (frame < 0) return false;
+  const auto& h = track.history();
+  for (size_t i = h.size(); i-- > 0;) {
+    if (h[i].frame <= frame) return h[i].frame == frame && h[i].detected && !h[i].merged;
+    if (h[i].merged) return false;  // its light was shared with another: it may have swapped
+  }
+  return false;  // older than the history: geometry must vouch again
+}
+
 bool CodeChecks::spans_code(const BlobTrack& track, const Code& code, size_t from) const {
   const auto& h = track.history();
   return h.size() > from &&
@@ -70,7 +80,7 @@ void CodeChecks::check(const BlobTracker& tracker, CodeReading& reading, int64_t
       const CodeMatch match = match_code(track->history(), reading.bits(track->id()), from, tt.clock.fitted(),
                                          *marker.code);
       if (match.mismatches > options_.verify_max_errors) {
-        tt.release(m);
+        if (!followed_since(*track, tt.vouched_frame[size_t(m)])) tt.release(m);
       } else if (!tt.confirmed[size_t(m)] && match.counted >= int(marker.code->length) &&
                  match.mismatches <= match.counted / 16 && spans_code(*track, *marker.code, from)) {
         tt.confirmed[size_t(m)] = true;  // a whole code cycle read: another code would differ somewhere

@@ -3,7 +3,11 @@
 // being checked against their markers' codes.
 //   - binary codes: the newest verify_samples samples under the target's clock
 //     may hold at most verify_max_errors read errors; a track with more leaves
-//     its marker. A track that joined its marker after the identification is
+//     its marker, unless geometry vouched for it (it was one of four markers
+//     fitting one pose, TrackedTarget::vouched_frame) and it has been followed
+//     without a merge since: an isolated blob followed from frame to frame does
+//     not change identity, while codes can become unreadable (both levels of a
+//     close marker clip). A track that joined its marker after the identification is
 //     confirmed once a whole code length of read bits matches (at most one
 //     error in 16). Free-running boards first have their clock's origin re-fitted
 //     (target_clock.hpp) once per code length, over the tracks' newest `samples`.
@@ -25,6 +29,10 @@ struct CodeCheckOptions {
   int frequency_check_frames = 8;
   int clock_samples = 48;  // samples a free-running clock is re-fitted over
 };
+
+// Whether the track holds the sample of `frame` (detected, unmerged) and no
+// merged sample after it. frame < 0: false.
+bool followed_since(const BlobTrack& track, int64_t frame);
 
 class CodeChecks {
  public:

@@ -27,7 +27,7 @@ std::vector<size_t> NewTargets::identify(const BlobTracker& tracker, CodeReading
     if (frequency_coded_) c.frequency_code = reading.frequency_code(track.id());
     candidates_.push_back(c);
   }
-  if (candidates_.size() < 4) return found;
+  if (candidates_.size() < 3) return found;  // three: a marker may be out of view
   for (const Identification& id : identifier_.identify(candidates_, wanted)) {
     (*roster)[id.target].identify(id.track_of, id.clock, id.pose, id.rms_px, stamp.middle_ns());
     found.push_back(id.target);

@@ -5,40 +5,12 @@
 #include <limits>
 #include <numeric>
 
+#include "identification_hypothesis.hpp"
 #include "tetrapulse/localizer/frequency_identifier.hpp"
 #include "tetrapulse/localizer/p4p.hpp"
 #include "tetrapulse/localizer/pose_refinement.hpp"
 
 namespace tetrapulse {
-
-struct TargetIdentifier::TrackCodes {
-  size_t from = 0;                              // first sample used
-  std::vector<CodeMatch> matches;               // synchronized: one per code
-  std::vector<std::vector<CodeMatch>> phases;   // free-running: per code, per phase
-  std::vector<double> best_cost;                // per code (over phases when free-running)
-};
-
-struct TargetIdentifier::Hypothesis {
-  size_t target = 0;
-  std::array<int, 4> track{};  // index into the candidate tracks
-  double cost = 0;
-  CodeMatch codes;
-  int phase = 0;               // free-running: phase index of the target's clock
-  // Free-running: the best cost at a phase more than a bit away from the best
-  // ones (another alignment of the codes: a cyclic shift).
-  double shifted_cost = std::numeric_limits<double>::infinity();
-  int8_t geometry_state = 0;   // 0 not evaluated, 1 holds, -1 fails
-  Pose pose;
-  double rms_px = std::numeric_limits<double>::infinity();
-
-  bool shares(const Hypothesis& o) const {
-    if (target == o.target) return true;
-    for (int a : track)
-      for (int b : o.track)
-        if (a == b) return true;
-    return false;
-  }
-};
 
 namespace {
 
@@ -115,7 +87,8 @@ void TargetIdentifier::score_codes(Hypothesis* h) const {
   if (!free_running_) {
     h->codes = CodeMatch{};
     for (int m = 0; m < 4; ++m)
-      if (code[size_t(m)] >= 0) h->codes += track_codes_[size_t(h->track[size_t(m)])].matches[size_t(code[size_t(m)])];
+      if (code[size_t(m)] >= 0 && h->track[size_t(m)] >= 0)
+        h->codes += track_codes_[size_t(h->track[size_t(m)])].matches[size_t(code[size_t(m)])];
     h->cost = h->codes.cost();
     return;
   }
@@ -128,7 +101,7 @@ void TargetIdentifier::score_codes(Hypothesis* h) const {
   std::vector<double> cost(size_t(phases), 0.0);
   for (int g = 0; g < phases; ++g)
     for (int m = 0; m < 4; ++m) {
-      if (code[size_t(m)] < 0) continue;
+      if (code[size_t(m)] < 0 || h->track[size_t(m)] < 0) continue;
       const auto& table = track_codes_[size_t(h->track[size_t(m)])].phases[size_t(code[size_t(m)])];
       cost[size_t(g)] += table[size_t(g) % table.size()].cost();
     }
@@ -151,11 +124,26 @@ void TargetIdentifier::score_codes(Hypothesis* h) const {
   }
   h->codes = CodeMatch{};
   for (int m = 0; m < 4; ++m) {
-    if (code[size_t(m)] < 0) continue;
+    if (code[size_t(m)] < 0 || h->track[size_t(m)] < 0) continue;
     const auto& table = track_codes_[size_t(h->track[size_t(m)])].phases[size_t(code[size_t(m)])];
     h->codes += table[size_t(h->phase) % table.size()];
   }
   h->cost = std::min(h->cost, h->codes.cost());
+}
+
+bool TargetIdentifier::may_be(const CandidateTrack& track, size_t i, size_t t, size_t m) const {
+  // A frequency code's marker takes exactly its tracks; a binary one none of them.
+  const int frequency = frequency_of_[t][m];
+  if (frequency >= 0 ? track.frequency_code != frequency : track.frequency_code >= 0) return false;
+  const int code = code_of_[t][m];
+  if (code < 0) return true;
+  const TrackCodes& tc = track_codes_[i];
+  const int counted = free_running_ ? 0 : tc.matches[size_t(code)].counted;
+  return tc.best_cost[size_t(code)] <= allowed_errors(counted) + options_.code_margin;
+}
+
+double TargetIdentifier::near_limit_px(const CandidateTrack& a, const CandidateTrack& b, size_t t) const {
+  return 2 * extent_ratio_[t] * std::max(a.radius_px, b.radius_px) + 10;
 }
 
 void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted) {
@@ -174,19 +162,9 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
     if (t >= wanted.size() || !wanted[t]) continue;
     Wanted w;
     w.target = t;
-    const std::array<int, 4>& code = code_of_[t];
-    const std::array<int, 4>& frequency = frequency_of_[t];
     for (size_t m = 0; m < 4; ++m)
-      for (size_t i = 0; i < n; ++i) {
-        // A frequency code's marker takes exactly its tracks; a binary one none of them.
-        if (frequency[m] >= 0 ? tracks[i].frequency_code != frequency[m] : tracks[i].frequency_code >= 0) continue;
-        if (code[m] >= 0) {
-          const TrackCodes& tc = track_codes_[i];
-          const int counted = free_running_ ? 0 : tc.matches[size_t(code[m])].counted;
-          if (tc.best_cost[size_t(code[m])] > allowed_errors(counted) + options_.code_margin) continue;
-        }
-        w.candidates[m].push_back(int(i));
-      }
+      for (size_t i = 0; i < n; ++i)
+        if (may_be(tracks[i], i, t, m)) w.candidates[m].push_back(int(i));
     w.combinations = 1;
     for (const auto& c : w.candidates) w.combinations *= double(c.size());
     if (w.combinations > 0) order.push_back(std::move(w));
@@ -202,8 +180,8 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
     const size_t t = w.target;
     // Tracks of one target lie within its image: at most its size over its markers' size, doubled.
     const auto near = [&](int a, int b) {
-      const double r = std::max(tracks[size_t(a)].radius_px, tracks[size_t(b)].radius_px);
-      return (tracks[size_t(a)].pixel - tracks[size_t(b)].pixel).norm() <= 2 * extent_ratio_[t] * r + 10;
+      const CandidateTrack &ta = tracks[size_t(a)], &tb = tracks[size_t(b)];
+      return (ta.pixel - tb.pixel).norm() <= near_limit_px(ta, tb, t);
     };
     const size_t before = hypotheses_.size();
     bool over = false;
@@ -282,7 +260,7 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
                                                        const std::vector<bool>& wanted) {
   std::vector<Identification> out;
   last_hypotheses_ = 0;
-  if (tracks.size() < 4) return out;
+  if (tracks.size() < 3) return out;
   if (coded_) score_tracks(tracks);
   enumerate(tracks, wanted);
   last_hypotheses_ = hypotheses_.size();
@@ -351,6 +329,7 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
     }
     out.push_back(id);
   }
+  if (options_.edge_identification) identify_at_edge(tracks, wanted, track_blocked, target_blocked, &out);
   // Evidence lasts while its hypothesis is weighed frame after frame, and through
   // frames where some of its tracks are dark or merged (no geometry to weigh then);
   // it ends with a track that ended or was claimed, or a frame all four were
@@ -407,7 +386,7 @@ bool TargetIdentifier::codes_accept(const Hypothesis& h) const {
   if (h.codes.counted < options_.min_bits || h.cost > allowed_errors(h.codes.counted)) return false;
   for (size_t m = 0; m < 4; ++m) {
     const int c = code_of_[h.target][m];
-    if (c < 0) continue;
+    if (c < 0 || h.track[m] < 0) continue;
     const TrackCodes& tc = track_codes_[size_t(h.track[m])];
     const CodeMatch& mm =
         free_running_ ? tc.phases[size_t(c)][size_t(h.phase) % tc.phases[size_t(c)].size()] : tc.matches[size_t(c)];

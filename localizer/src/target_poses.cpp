@@ -152,8 +152,10 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
     tt.typical_rms_px = std::max(0.05, 0.8 * tt.typical_rms_px + 0.2 * solved->rms_px);
     centroids->weigh(f.camera, target, markers.confirmed, solved->pose, options.pose.centroid_sigma_px);
   }
+  const bool four_fit = solved->used.size() == 4 && markers.evidence.merged.empty();
   for (int m : solved->used) {
     tt.outlier_frames[size_t(m)] = 0;
+    if (four_fit) tt.vouched_frame[size_t(m)] = f.stamp.frame;
     const BlobTrack* track = f.tracker.find(tt.track_of[size_t(m)]);
     const bool merged = track && track->history().newest().merged;
     if (!tt.confirmed[size_t(m)] && !merged && solved->used.size() == 4 && ++tt.fits[size_t(m)] >= 2)

@@ -9,7 +9,7 @@ void TrackedTarget::identify(const std::array<int64_t, 4>& tracks, const CodeClo
   forget();
   identified = true;
   track_of = tracks;
-  confirmed = {true, true, true, true};
+  for (size_t m = 0; m < 4; ++m) confirmed[m] = tracks[m] >= 0;  // -1: out of view when identified
   clock.start(code_clock, mid_ns);
   seed = pose;
   predicted = pose;
@@ -26,6 +26,7 @@ void TrackedTarget::forget() {
   outlier_frames = {};
   confirmed = {};
   fits = {};
+  vouched_frame = {-1, -1, -1, -1};
   predictor.reset();
   seed.reset();
   clock.forget();

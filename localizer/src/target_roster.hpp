@@ -34,6 +34,11 @@ struct TrackedTarget {
   // never decides a pose alone (no three-marker pose, no root choice).
   std::array<bool, 4> confirmed{};
   std::array<int, 4> fits{};  // four-marker poses an unconfirmed track fitted
+  // The last frame each marker's track was one of four markers that fitted one
+  // pose (-1: none since it took the track). Geometry then vouched for it: a
+  // track followed without a merge since keeps that identity, so read errors
+  // alone (both levels clipped, codes unreadable) do not take it away.
+  std::array<int64_t, 4> vouched_frame{-1, -1, -1, -1};
   PosePredictor predictor;
   std::optional<Pose> predicted;  // at this frame's mid-exposure
   std::optional<Pose> seed;       // the identification's pose, until the first measured one
@@ -62,6 +67,7 @@ struct TrackedTarget {
     outlier_frames[size_t(marker)] = 0;
     confirmed[size_t(marker)] = false;
     fits[size_t(marker)] = 0;
+    vouched_frame[size_t(marker)] = -1;
   }
 };
 

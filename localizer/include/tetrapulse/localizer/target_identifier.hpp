@@ -47,6 +47,16 @@
 // combinations first; a target left over (its codes have not narrowed its tracks
 // yet) waits, and blocks any hypothesis that one of its own could rival on a
 // shared track (a lower bound of its code cost within code_margin).
+// Three tracks: a target with one marker out of view (at the image's edge) is
+// still found (target_identifier_edge.cpp). Three tracks fit any three markers
+// exactly, so such a hypothesis holds only when exactly one P3P root of its three
+// measured blobs puts the fourth marker out of view (its centre not an image
+// radius inside the border), and it is accepted only after min_edge_frames frames
+// in which it held, its codes passed as above, and no other hypothesis on its
+// tracks or target within code_margin had a root putting its missing marker out
+// of view, with no frame between in which it failed (frames with a track dark or
+// merged judge nothing). The four-track pass goes first; its tracks and waiting
+// targets are not reused.
 // Pixels in the OpenCV convention; poses as pose.hpp; times in rig-time ns.
 #include <array>
 #include <cstdint>
@@ -83,6 +93,9 @@ struct IdentificationOptions {
   double min_geometry_evidence = 12.0;   // nats
   int min_geometry_frames = 3;
   double geometry_noise_floor_px = 0.05;
+  // Three tracks, a marker out of view (see above): frames it must hold.
+  bool edge_identification = true;
+  int min_edge_frames = 3;
 };
 
 // A track as the identifier sees it this frame.
@@ -129,6 +142,15 @@ class TargetIdentifier {
   };
   using GeometryKey = std::pair<size_t, std::array<int64_t, 4>>;  // target, track of each marker
   void score_tracks(const std::vector<CandidateTrack>& tracks);
+  // Whether candidate track i may be marker m of target t by its codes.
+  bool may_be(const CandidateTrack& track, size_t i, size_t t, size_t m) const;
+  // How far apart two tracks of target t may lie (its size over its markers' size, doubled).
+  double near_limit_px(const CandidateTrack& a, const CandidateTrack& b, size_t t) const;
+  // The three-track pass (target_identifier_edge.cpp), after the four-track one.
+  void identify_at_edge(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted,
+                        std::vector<char>& track_blocked, std::vector<char>& target_blocked,
+                        std::vector<Identification>* out);
+  bool edge_geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const;
   void enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted);
   void score_codes(Hypothesis* h) const;
   bool geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const;
@@ -163,6 +185,9 @@ class TargetIdentifier {
   };
   std::vector<Unweighed> unweighed_;
   std::map<GeometryKey, GeometryEvidence> geometry_evidence_;
+  // Three-track hypotheses (missing marker's track -1): frames they held alone,
+  // since they last failed.
+  std::map<GeometryKey, int> edge_evidence_;
   size_t last_hypotheses_ = 0;
 };
 
