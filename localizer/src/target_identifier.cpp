@@ -264,8 +264,17 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
   if (coded_) score_tracks(tracks);
   enumerate(tracks, wanted);
   last_hypotheses_ = hypotheses_.size();
-  std::stable_sort(hypotheses_.begin(), hypotheses_.end(),
-                   [](const Hypothesis& a, const Hypothesis& b) { return a.cost < b.cost; });
+  {
+    // By cost, ties in enumeration order; indices sort, each hypothesis moves once.
+    std::vector<uint32_t> order(hypotheses_.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return hypotheses_[a].cost < hypotheses_[b].cost; });
+    sorted_.clear();
+    sorted_.reserve(order.size());
+    for (uint32_t i : order) sorted_.push_back(hypotheses_[i]);
+    hypotheses_.swap(sorted_);
+  }
 
   std::vector<char> track_blocked(tracks.size(), 0), target_blocked(targets_.targets.size(), 0);
   const double margin = coded_ ? options_.code_margin : std::numeric_limits<double>::infinity();

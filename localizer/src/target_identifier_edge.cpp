@@ -11,6 +11,7 @@
 // ambiguity waits.
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "identification_hypothesis.hpp"
 #include "tetrapulse/localizer/p3p.hpp"
@@ -74,10 +75,17 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
     // Targets that waited on rivals in the four-track pass stay rivals here.
     if (t >= wanted.size() || !wanted[t]) continue;
     if (std::any_of(out->begin(), out->end(), [t](const Identification& id) { return id.target == t; })) continue;
+    // A marker out of view lies within the target's image size of each of the
+    // others (the bound near() uses), so all three lie that close to the border.
+    const auto by_border = [&](const CandidateTrack& c) {
+      const double reach = 2 * extent_ratio_[t] * c.radius_px + 10;
+      return !camera_.in_image(c.pixel, reach);
+    };
     std::array<std::vector<int>, 4> candidates;
     for (size_t m = 0; m < 4; ++m)
       for (size_t i = 0; i < tracks.size(); ++i)
-        if (tracks[i].measured && !track_blocked[i] && may_be(tracks[i], i, t, m)) candidates[m].push_back(int(i));
+        if (tracks[i].measured && !track_blocked[i] && by_border(tracks[i]) && may_be(tracks[i], i, t, m))
+          candidates[m].push_back(int(i));
     const auto near = [&](int a, int b) {
       const CandidateTrack &ta = tracks[size_t(a)], &tb = tracks[size_t(b)];
       return a != b && (ta.pixel - tb.pixel).norm() <= near_limit_px(ta, tb, t);
@@ -111,10 +119,15 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
   }
   // Too many to weigh: the codes have not narrowed the tracks yet; wait.
   if (over) hs.clear();
-  std::stable_sort(hs.begin(), hs.end(), [](const Hypothesis& a, const Hypothesis& b) { return a.cost < b.cost; });
+  // Nothing to accept (codes not read far enough yet): rivals need no weighing.
+  if (std::none_of(hs.begin(), hs.end(), [&](const Hypothesis& h) { return !target_blocked[h.target] && codes_accept(h); }))
+    hs.clear();
+  std::vector<uint32_t> order(hs.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return hs[a].cost < hs[b].cost; });
   const double margin = coded_ ? options_.code_margin : std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < hs.size(); ++i) {
-    Hypothesis& h = hs[i];
+  for (size_t i = 0; i < order.size(); ++i) {
+    Hypothesis& h = hs[order[i]];
     if (target_blocked[h.target] || !codes_accept(h) || h.shifted_cost < h.cost + margin) continue;
     if (std::any_of(h.track.begin(), h.track.end(), [&](int k) { return k >= 0 && track_blocked[size_t(k)]; }))
       continue;
@@ -128,8 +141,8 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
       continue;
     }
     bool rival = false;
-    for (size_t j = 0; j < hs.size() && !rival; ++j) {
-      Hypothesis& r = hs[j];
+    for (size_t j = 0; j < order.size() && !rival; ++j) {
+      Hypothesis& r = hs[order[j]];
       if (!(r.cost < h.cost + margin)) break;  // sorted by cost
       if (j == i || !h.shares(r)) continue;
       edge_geometry(tracks, &r);

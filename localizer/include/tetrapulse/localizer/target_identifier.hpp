@@ -176,6 +176,7 @@ class TargetIdentifier {
   std::vector<double> extent_ratio_;             // target's largest marker distance / marker radius
   std::vector<TrackCodes> track_codes_;
   std::vector<Hypothesis> hypotheses_;
+  std::vector<Hypothesis> sorted_;  // scratch of the sort by cost
   // Targets with too many combinations to weigh in this call: each marker's
   // candidate tracks with their code cost, and the least cost per marker.
   struct Unweighed {
