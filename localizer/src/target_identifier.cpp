@@ -44,6 +44,18 @@ TargetIdentifier::TargetIdentifier(const CameraModel& camera, const TargetsFile&
 TargetIdentifier::~TargetIdentifier() = default;
 TargetIdentifier::TargetIdentifier(TargetIdentifier&&) noexcept = default;
 
+Identification TargetIdentifier::identification_of(const Hypothesis& h, const std::array<int64_t, 4>& track_ids) const {
+  Identification id;
+  id.target = h.target;
+  id.track_of = track_ids;
+  id.pose = h.pose;
+  id.rms_px = h.rms_px;
+  id.codes = h.codes;
+  id.clock = CodeClock::from(targets_.timebase);
+  if (free_running_) id.clock.origin_ns = phase_origin(0, targets_.timebase.bit_period_ns, options_.phase_steps, h.phase);
+  return id;
+}
+
 bool TargetIdentifier::has_binary_codes(size_t target) const {
   for (int c : code_of_[target])
     if (c >= 0) return true;
@@ -326,17 +338,9 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
       if (!codes_accept(w)) continue;
     }
     const Hypothesis& accepted = hypotheses_[chosen];
-    Identification id;
-    id.target = accepted.target;
-    for (size_t m = 0; m < 4; ++m) id.track_of[m] = tracks[size_t(accepted.track[m])].track->id();
-    id.pose = accepted.pose;
-    id.rms_px = accepted.rms_px;
-    id.codes = accepted.codes;
-    id.clock = CodeClock::from(targets_.timebase);
-    if (free_running_) {
-      id.clock.origin_ns = phase_origin(0, targets_.timebase.bit_period_ns, options_.phase_steps, accepted.phase);
-    }
-    out.push_back(id);
+    std::array<int64_t, 4> ids{};
+    for (size_t m = 0; m < 4; ++m) ids[m] = tracks[size_t(accepted.track[m])].track->id();
+    out.push_back(identification_of(accepted, ids));
   }
   if (options_.edge_identification) identify_at_edge(tracks, wanted, track_blocked, target_blocked, &out);
   // Evidence lasts while its hypothesis is weighed frame after frame, and through

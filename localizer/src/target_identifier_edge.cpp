@@ -81,6 +81,8 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
       const double reach = 2 * extent_ratio_[t] * c.radius_px + 10;
       return !camera_.in_image(c.pixel, reach);
     };
+    // Only measured tracks: a frame with one dark or merged judges nothing, and
+    // the evidence of its hypotheses waits.
     std::array<std::vector<int>, 4> candidates;
     for (size_t m = 0; m < 4; ++m)
       for (size_t i = 0; i < tracks.size(); ++i)
@@ -131,9 +133,6 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
     if (target_blocked[h.target] || !codes_accept(h) || h.shifted_cost < h.cost + margin) continue;
     if (std::any_of(h.track.begin(), h.track.end(), [&](int k) { return k >= 0 && track_blocked[size_t(k)]; }))
       continue;
-    // A dark or merged track this frame: nothing to judge, the evidence waits.
-    if (std::any_of(h.track.begin(), h.track.end(), [&](int k) { return k >= 0 && !tracks[size_t(k)].measured; }))
-      continue;
     GeometryKey key{h.target, {}};
     for (size_t m = 0; m < 4; ++m) key.second[m] = h.track[m] >= 0 ? tracks[size_t(h.track[m])].track->id() : -1;
     if (!edge_geometry(tracks, &h) || unweighed_rival(h)) {
@@ -157,17 +156,7 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
       continue;
     }
     if (++edge_evidence_[key] < options_.min_edge_frames) continue;
-    Identification id;
-    id.target = h.target;
-    id.track_of = key.second;
-    id.pose = h.pose;
-    id.rms_px = h.rms_px;
-    id.codes = h.codes;
-    id.clock = CodeClock::from(targets_.timebase);
-    if (free_running_) {
-      id.clock.origin_ns = phase_origin(0, targets_.timebase.bit_period_ns, options_.phase_steps, h.phase);
-    }
-    out->push_back(id);
+    out->push_back(identification_of(h, key.second));
   }
   // Evidence ends with any of its tracks.
   std::vector<int64_t> ids;

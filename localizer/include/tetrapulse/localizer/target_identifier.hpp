@@ -151,6 +151,8 @@ class TargetIdentifier {
                         std::vector<char>& track_blocked, std::vector<char>& target_blocked,
                         std::vector<Identification>* out);
   bool edge_geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const;
+  // The accepted hypothesis as reported, its markers on `track_ids` (-1: none).
+  Identification identification_of(const Hypothesis& h, const std::array<int64_t, 4>& track_ids) const;
   void enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted);
   void score_codes(Hypothesis* h) const;
   bool geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const;
