@@ -41,8 +41,8 @@
 //
 // Of hypotheses tied in codes, the best geometry is weighed first: its rivals are
 // those within geometry_margin_px of it.
-// Hypotheses need four tracks; tracks too far apart for one target (judged from
-// their blob sizes and the marker diameter) are never combined. At most
+// Hypotheses need four tracks (three: below); tracks too far apart for one
+// target (judged from their blob sizes and the marker diameter) are never combined. At most
 // max_hypotheses are weighed a call, given to the targets with the fewest
 // combinations first; a target left over (its codes have not narrowed its tracks
 // yet) waits, and blocks any hypothesis that one of its own could rival on a
@@ -55,8 +55,9 @@
 // in which it held, its codes passed as above, and no other hypothesis on its
 // tracks or target within code_margin had a root putting its missing marker out
 // of view, with no frame between in which it failed (frames with a track dark or
-// merged judge nothing). The four-track pass goes first; its tracks and waiting
-// targets are not reused.
+// merged judge nothing). Only tracks within the target's image size of the
+// border take part (the missing marker is that close to each). The four-track
+// pass goes first; its tracks and waiting targets are not reused.
 // Pixels in the OpenCV convention; poses as pose.hpp; times in rig-time ns.
 #include <array>
 #include <cstdint>
