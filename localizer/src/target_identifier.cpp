@@ -154,8 +154,10 @@ bool TargetIdentifier::may_be(const CandidateTrack& track, size_t i, size_t t, s
   return tc.best_cost[size_t(code)] <= allowed_errors(counted) + options_.code_margin;
 }
 
-double TargetIdentifier::near_limit_px(const CandidateTrack& a, const CandidateTrack& b, size_t t) const {
-  return 2 * extent_ratio_[t] * std::max(a.radius_px, b.radius_px) + 10;
+double TargetIdentifier::reach_px(double radius_px, size_t t) const { return 2 * extent_ratio_[t] * radius_px + 10; }
+
+bool TargetIdentifier::near(const CandidateTrack& a, const CandidateTrack& b, size_t t) const {
+  return (a.pixel - b.pixel).norm() <= reach_px(std::max(a.radius_px, b.radius_px), t);
 }
 
 void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted) {
@@ -191,10 +193,7 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
   for (const Wanted& w : order) {
     const size_t t = w.target;
     // Tracks of one target lie within its image: at most its size over its markers' size, doubled.
-    const auto near = [&](int a, int b) {
-      const CandidateTrack &ta = tracks[size_t(a)], &tb = tracks[size_t(b)];
-      return (ta.pixel - tb.pixel).norm() <= near_limit_px(ta, tb, t);
-    };
+    const auto near = [&](int a, int b) { return this->near(tracks[size_t(a)], tracks[size_t(b)], t); };
     const size_t before = hypotheses_.size();
     bool over = false;
     Hypothesis h;

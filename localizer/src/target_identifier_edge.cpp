@@ -77,10 +77,7 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
     if (std::any_of(out->begin(), out->end(), [t](const Identification& id) { return id.target == t; })) continue;
     // A marker out of view lies within the target's image size of each of the
     // others (the bound near() uses), so all three lie that close to the border.
-    const auto by_border = [&](const CandidateTrack& c) {
-      const double reach = 2 * extent_ratio_[t] * c.radius_px + 10;
-      return !camera_.in_image(c.pixel, reach);
-    };
+    const auto by_border = [&](const CandidateTrack& c) { return !camera_.in_image(c.pixel, reach_px(c.radius_px, t)); };
     // Only measured tracks: a frame with one dark or merged judges nothing, and
     // the evidence of its hypotheses waits.
     std::array<std::vector<int>, 4> candidates;
@@ -88,10 +85,7 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
       for (size_t i = 0; i < tracks.size(); ++i)
         if (tracks[i].measured && !track_blocked[i] && by_border(tracks[i]) && may_be(tracks[i], i, t, m))
           candidates[m].push_back(int(i));
-    const auto near = [&](int a, int b) {
-      const CandidateTrack &ta = tracks[size_t(a)], &tb = tracks[size_t(b)];
-      return a != b && (ta.pixel - tb.pixel).norm() <= near_limit_px(ta, tb, t);
-    };
+    const auto near = [&](int a, int b) { return a != b && this->near(tracks[size_t(a)], tracks[size_t(b)], t); };
     for (int missing = 0; missing < 4 && !over; ++missing) {
       std::array<size_t, 3> m{};
       for (size_t k = 0, j = 0; k < 4; ++k)

@@ -145,8 +145,11 @@ class TargetIdentifier {
   void score_tracks(const std::vector<CandidateTrack>& tracks);
   // Whether candidate track i may be marker m of target t by its codes.
   bool may_be(const CandidateTrack& track, size_t i, size_t t, size_t m) const;
-  // How far apart two tracks of target t may lie (its size over its markers' size, doubled).
-  double near_limit_px(const CandidateTrack& a, const CandidateTrack& b, size_t t) const;
+  // How far from a blob of `radius_px` the other markers of target t may lie: its
+  // size over its markers' size, doubled, plus 10 px.
+  double reach_px(double radius_px, size_t t) const;
+  // Whether two tracks lie close enough to be markers of target t.
+  bool near(const CandidateTrack& a, const CandidateTrack& b, size_t t) const;
   // The three-track pass (target_identifier_edge.cpp), after the four-track one.
   void identify_at_edge(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted,
                         std::vector<char>& track_blocked, std::vector<char>& target_blocked,
