@@ -149,7 +149,8 @@ std::optional<LiveFrame> LiveCapture::next(const std::atomic<bool>& stop) {
   if (args_.frames > 0 && handed_out_ >= args_.frames) return std::nullopt;
   std::unique_lock<std::mutex> lock(mutex_);
   while (queue_.empty() && !ended_ && !stop) ready_.wait_for(lock, std::chrono::milliseconds(100));
-  if (stop || queue_.empty()) return std::nullopt;
+  if (stop) quit_ = true;  // the capture thread grabs no more; what it queued is drained
+  if (queue_.empty()) return std::nullopt;
   LiveFrame f = std::move(queue_.front());
   queue_.pop_front();
   if (!f.frame.bad) ++handed_out_;

@@ -72,8 +72,10 @@ class LiveCapture {
                                                                       const std::function<void(const std::string&)>& note);
   ~LiveCapture();
 
-  // The next frame (bad ones included, marked); nullopt once `stop` is set, --frames
-  // frames were handed out, or the capture ended (then error() says why, if it failed).
+  // The next frame (bad ones included, marked); nullopt once --frames frames were
+  // handed out, or the capture ended (then error() says why, if it failed). Once
+  // `stop` is set the camera stops and the frames it had already delivered are still
+  // handed out, then nullopt: a stop loses no frame that was captured.
   std::optional<LiveFrame> next(const std::atomic<bool>& stop);
   const std::optional<std::string>& error() const { return error_; }
   LiveStats stats() const;
