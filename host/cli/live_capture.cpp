@@ -20,6 +20,11 @@ void add_live_options(CLI::App* cmd, LiveArgs* a) {
   cmd->add_option("--strobe-output", a->strobe_output, "Camera output line to drive with LineSource ExposureActive (e.g. Line1)");
   cmd->add_option("--sync-strobe", a->sync_strobe,
                   "Host GPIO line CHIP:LINE wired to the strobe: be the sync master, stamp exposures from its edges");
+  cmd->add_option("--sync-trigger", a->sync_trigger,
+                  "Host GPIO line CHIP:LINE wired to the camera's trigger input: be the sync master, one pulse per frame "
+                  "at --frame-rate, --exposure-us wide (camera: TriggerMode On, TriggerSource --trigger-source or Line0)");
+  cmd->add_option("--sync-can", a->sync_can, "Broadcast the boards' CAN time sync on this SocketCAN interface");
+  cmd->add_option("--can-rate", a->can_rate_hz, "CAN time syncs per second")->check(CLI::Range(0.1, 1000.0))->capture_default_str();
   cmd->add_flag("--camera-clock-is-rig-time", a->camera_clock_is_rig,
                 "The camera's timestamps are rig time already (PTP-synchronised to the sync master, or a simulated camera)");
   cmd->add_option("--packet-size", a->packet_size, "GigE Vision GevSCPSPacketSize (bytes; needs jumbo frames above 1500)");
@@ -54,43 +59,87 @@ tl::expected<std::unique_ptr<LiveCapture>, std::string> LiveCapture::open(
   s.packet_size = args.packet_size;
   s.width = width;
   s.height = height;
+  const host::ExposureMatcher::Options timing = matcher_options(args);
+  if (!args.sync_trigger.empty()) {
+    if (!args.sync_strobe.empty()) return tl::unexpected(std::string("--sync-strobe and --sync-trigger: one GPIO line mode"));
+    if (timing.frame_period_ns <= 0) return tl::unexpected(std::string("--sync-trigger needs --frame-rate: the pulse rate"));
+    s.trigger_source = args.trigger_source.empty() ? "Line0" : args.trigger_source;
+    s.trigger_required = true;
+  }
   auto notes = (*camera)->configure(s);
   if (!notes) return tl::unexpected(notes.error().what());
   for (const std::string& n : *notes) note(n);
   std::unique_ptr<host::GpioSync> sync;
-  if (!args.sync_strobe.empty()) {
-    auto line = host::parse_gpio_line(args.sync_strobe);
+  if (!args.sync_strobe.empty() || !args.sync_trigger.empty()) {
+    auto line = host::parse_gpio_line(args.sync_trigger.empty() ? args.sync_strobe : args.sync_trigger);
     if (!line) return tl::unexpected(line.error().what());
-    host::GpioStrobeOptions o;
-    o.line = *line;
-    o.frame_period_ns = matcher_options(args).frame_period_ns;
-    auto g = host::GpioSync::strobe(o, host::RigClock(0));
+    host::HostResult<std::unique_ptr<host::GpioSync>> g;
+    if (!args.sync_trigger.empty()) {
+      host::GpioTriggerOptions o;
+      o.line = *line;
+      o.frame_period_ns = timing.frame_period_ns;
+      o.exposure_ns = timing.exposure_ns;
+      g = host::GpioSync::trigger(o, host::RigClock(0));
+    } else {
+      host::GpioStrobeOptions o;
+      o.line = *line;
+      o.frame_period_ns = timing.frame_period_ns;
+      g = host::GpioSync::strobe(o, host::RigClock(0));
+    }
     if (!g) return tl::unexpected(g.error().what());
     sync = std::move(*g);
+    note("sync master: " + sync->schedule_text());
   }
-  std::unique_ptr<LiveCapture> live(new LiveCapture(args, std::move(*camera), std::move(sync)));
+  std::unique_ptr<host::CanSync> can;
+  if (!args.sync_can.empty()) {
+    host::CanSyncOptions o;
+    o.period_ns = static_cast<int64_t>(std::llround(1e9 / args.can_rate_hz));
+    auto c = host::CanSync::open(args.sync_can, host::RigClock(0), o);
+    if (!c) return tl::unexpected(c.error().what());
+    can = std::move(*c);
+    note(fmt::format("CAN time sync on {} at {} Hz", args.sync_can, args.can_rate_hz));
+  }
+  std::unique_ptr<LiveCapture> live(new LiveCapture(args, std::move(*camera), std::move(sync), std::move(can)));
   if (auto started = live->camera_->start(); !started) return tl::unexpected(started.error().what());
   if (live->sync_) {
     live->sync_thread_ = std::thread([p = live.get()] {
       auto r = p->sync_->run(p->quit_, 0, [p](const host::Exposure& e) { p->matcher_.add_exposure(e); });
-      if (!r) {
-        std::lock_guard<std::mutex> lock(p->mutex_);
-        if (!p->error_) p->error_ = r.error().what();
-      }
+      if (!r) p->fail(r.error().what());
+    });
+  }
+  if (live->can_) {
+    live->can_thread_ = std::thread([p = live.get()] {
+      auto r = p->can_->run(p->quit_, 0, [p](const host::CanSyncSample&) { ++p->can_syncs_; });
+      if (!r) p->fail(r.error().what());
     });
   }
   live->capture_thread_ = std::thread([p = live.get()] { p->capture_loop(); });
   return live;
 }
 
-LiveCapture::LiveCapture(const LiveArgs& args, std::unique_ptr<host::Camera> camera, std::unique_ptr<host::GpioSync> sync)
-    : args_(args), camera_(std::move(camera)), sync_(std::move(sync)), matcher_(sync_ != nullptr, matcher_options(args)) {}
+LiveCapture::LiveCapture(const LiveArgs& args, std::unique_ptr<host::Camera> camera, std::unique_ptr<host::GpioSync> sync,
+                         std::unique_ptr<host::CanSync> can)
+    : args_(args),
+      camera_(std::move(camera)),
+      sync_(std::move(sync)),
+      can_(std::move(can)),
+      matcher_(sync_ != nullptr, matcher_options(args)) {}
 
 LiveCapture::~LiveCapture() {
   quit_ = true;
   if (capture_thread_.joinable()) capture_thread_.join();
   if (sync_thread_.joinable()) sync_thread_.join();
+  if (can_thread_.joinable()) can_thread_.join();
   camera_->stop();
+}
+
+// A sync thread failed: the run ends with that error (the first one kept).
+void LiveCapture::fail(const std::string& why) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!error_) error_ = why;
+  }
+  quit_ = true;
 }
 
 void LiveCapture::capture_loop() {
@@ -162,15 +211,15 @@ LiveStats LiveCapture::stats() const {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     s.queue_drops = drops_;
-  }
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
     s.grabbed = counters_.frames;
     s.bad_buffers = counters_.bad_buffers;
   }
   s.match = matcher_.counters();
   s.synchronised = matcher_.synchronised();
   s.estimated = !s.synchronised && !args_.camera_clock_is_rig;
+  if (sync_) s.sync_master = (args_.sync_trigger.empty() ? "strobe " : "trigger ") + sync_->line_name();
+  s.can_syncs = can_syncs_;
+  s.can_interface = args_.sync_can;
   return s;
 }
 
@@ -182,9 +231,12 @@ int64_t LatencyStats::percentile(double p) const {
   return sorted[std::min(sorted.size() - 1, rank == 0 ? 0 : rank - 1)];
 }
 
-const char* stamp_source(const LiveStats& s) {
-  if (s.synchronised) return "sync master (strobe)";
-  return s.estimated ? "camera clock + estimated offset (no sync wiring)" : "camera clock (rig time)";
+std::string stamp_source(const LiveStats& s) {
+  std::string text = s.synchronised ? "sync master (" + s.sync_master + ")"
+                     : s.estimated  ? "camera clock + estimated offset (no sync wiring)"
+                                    : "camera clock (rig time)";
+  if (!s.can_interface.empty()) text += fmt::format("; {} CAN time syncs on {}", s.can_syncs, s.can_interface);
+  return text;
 }
 
 std::string LatencyStats::summary() const {

@@ -1,9 +1,10 @@
 #pragma once
 // The live loop's capture side, shared by `record` and `localize --camera`: a
 // camera (host/camera.hpp) grabbed on a thread of its own, each frame stamped in rig
-// time (ExposureMatcher: the strobe sync master in this process when --sync-strobe
-// names its GPIO line, else the camera clock and an estimated offset), and a bounded
-// queue to the consumer. Capture never waits for the consumer: when the queue is full
+// time (ExposureMatcher: the GPIO sync master in this process when --sync-strobe or
+// --sync-trigger names its line, else the camera clock and an estimated offset), the
+// boards' CAN time sync from the same process when --sync-can names an interface, and
+// a bounded queue to the consumer. Capture never waits for the consumer: when the queue is full
 // the oldest frame is dropped and counted. Rig time is the host's CLOCK_MONOTONIC
 // (RigClock offset 0).
 #include <atomic>
@@ -21,6 +22,7 @@
 #include <CLI/CLI.hpp>
 
 #include "tetrapulse/host/camera.hpp"
+#include "tetrapulse/host/can_sync.hpp"
 #include "tetrapulse/host/exposure_matcher.hpp"
 #include "tetrapulse/host/gpio_sync.hpp"
 
@@ -35,6 +37,9 @@ struct LiveArgs {
   std::string trigger_source;    // camera input line for a hardware trigger
   std::string strobe_output;     // camera output line to drive with ExposureActive
   std::string sync_strobe;       // host GPIO line that sees the strobe (the sync master)
+  std::string sync_trigger;      // host GPIO line that triggers the camera (the sync master)
+  std::string sync_can;          // SocketCAN interface for the boards' time sync
+  double can_rate_hz = 10;       // CAN Sync/FollowUp pairs per second
   int64_t frames = 0;            // stop after this many frames (0: until stopped)
   int queue = 4;                 // frames between capture and consumer
   int frame_timeout_ms = 5000;   // no frame for this long ends the run
@@ -43,7 +48,7 @@ struct LiveArgs {
   std::string record;            // localize: also write the frames as a rig dataset here
 };
 // --camera, --exposure-us, --gain-db, --frame-rate, --pixel-format, --trigger-source,
-// --strobe-output, --sync-strobe, --frames, --queue.
+// --strobe-output, --sync-strobe, --sync-trigger, --sync-can, --can-rate, --frames, --queue.
 void add_live_options(CLI::App* cmd, LiveArgs* args);
 
 struct LiveFrame {
@@ -62,6 +67,9 @@ struct LiveStats {
   host::MatchCounters match;
   bool estimated = false;     // stamps from the camera clock and an estimated offset
   bool synchronised = false;  // stamps from the sync master
+  std::string sync_master;    // "strobe gpio:gpiochip0:3", "trigger ..." ("" without)
+  uint64_t can_syncs = 0;     // CAN Sync/FollowUp pairs sent (--sync-can)
+  std::string can_interface;  // "" without --sync-can
 };
 
 class LiveCapture {
@@ -84,12 +92,16 @@ class LiveCapture {
   std::string transport_summary() { return camera_->transport_summary(); }
 
  private:
-  LiveCapture(const LiveArgs& args, std::unique_ptr<host::Camera> camera, std::unique_ptr<host::GpioSync> sync);
+  LiveCapture(const LiveArgs& args, std::unique_ptr<host::Camera> camera, std::unique_ptr<host::GpioSync> sync,
+              std::unique_ptr<host::CanSync> can);
   void capture_loop();
+  void fail(const std::string& why);
 
   LiveArgs args_;
   std::unique_ptr<host::Camera> camera_;
   std::unique_ptr<host::GpioSync> sync_;
+  std::unique_ptr<host::CanSync> can_;
+  std::atomic<uint64_t> can_syncs_{0};
   host::ExposureMatcher matcher_;
   std::atomic<bool> quit_{false};
   mutable std::mutex mutex_;
@@ -102,11 +114,12 @@ class LiveCapture {
   host::CameraCounters counters_;
   int64_t handed_out_ = 0;
   std::thread sync_thread_;
+  std::thread can_thread_;
   std::thread capture_thread_;
 };
 
-// How the frames were stamped, for summaries.
-const char* stamp_source(const LiveStats& s);
+// How the frames were stamped (and the boards' CAN time sync, if any), for summaries.
+std::string stamp_source(const LiveStats& s);
 
 // Latency from exposure end to pose out (ns), p50/p99 in a summary line.
 class LatencyStats {

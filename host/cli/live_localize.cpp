@@ -27,7 +27,7 @@ class LiveFrameSource final : public FrameSource {
                  latency_.summary().c_str(), static_cast<unsigned long long>(s.grabbed),
                  static_cast<unsigned long long>(s.bad_buffers), static_cast<unsigned long long>(s.queue_drops),
                  static_cast<unsigned long long>(s.match.dropped), static_cast<unsigned long long>(s.match.unmatched_frames),
-                 stamp_source(s));
+                 stamp_source(s).c_str());
     if (const std::string t = live_->transport_summary(); !t.empty()) std::fprintf(stderr, "tetrapulse localize: %s\n", t.c_str());
     if (live_->error()) std::fprintf(stderr, "tetrapulse localize: %s\n", live_->error()->c_str());
   }

@@ -93,7 +93,7 @@ int run_record(RecordArgs a) {
                  static_cast<unsigned long long>(s.grabbed), static_cast<unsigned long long>(s.bad_buffers),
                  static_cast<unsigned long long>(s.queue_drops), static_cast<unsigned long long>(s.match.dropped),
                  static_cast<unsigned long long>(s.match.unmatched_frames), static_cast<unsigned long long>(skipped),
-                 stamp_source(s));
+                 stamp_source(s).c_str());
     if (!transport.empty()) std::fprintf(stderr, "tetrapulse record: %s\n", transport.c_str());
   }
   if (error && !stopped && (a.live.frames == 0 || written < a.live.frames)) return fail(kExitDeviceError, *error);

@@ -88,10 +88,7 @@ int run_sync(const SyncArgs& a) {
       auto s = host::GpioSync::trigger(o, clock);
       if (!s) return report_failure("sync", s.error());
       gpio_sync = std::move(*s);
-      gpio_text = fmt::format("trigger {} at {} Hz: pulse k rises at rig time {} + k * {} ns (boards: gpio_edge_epoch_ns "
-                              "{}, gpio_edge_period_ns {}), {} ns wide",
-                              gpio_sync->line_name(), a.rate_hz, gpio_sync->first_edge_ns(), period,
-                              gpio_sync->first_edge_ns(), period, o.exposure_ns);
+      gpio_text = fmt::format("{} ({} Hz)", gpio_sync->schedule_text(), a.rate_hz);
     } else {
       host::GpioStrobeOptions o;
       o.line = *line;
@@ -100,8 +97,7 @@ int run_sync(const SyncArgs& a) {
       auto s = host::GpioSync::strobe(o, clock);
       if (!s) return report_failure("sync", s.error());
       gpio_sync = std::move(*s);
-      gpio_text = fmt::format("strobe {} (active {}), frames numbered at {} Hz", gpio_sync->line_name(),
-                              a.active_low ? "low" : "high", a.rate_hz);
+      gpio_text = fmt::format("{}, frames numbered at {} Hz", gpio_sync->schedule_text(), a.rate_hz);
     }
   }
   std::unique_ptr<host::CanSync> can_sync;

@@ -165,6 +165,10 @@ class AravisCamera final : public Camera {
       feature("AcquisitionFrameRate", &notes, &failed,
               [&](GError** e) { arv_camera_set_frame_rate(camera_, *s.frame_rate_hz, e); }, "AcquisitionFrameRateAbs");
     }
+    if (s.trigger_source && s.trigger_required && (!has("TriggerMode") || !has("TriggerSource"))) {
+      return host_error(HostErrorKind::kBadInput, name(),
+                        "camera has no feature TriggerMode/TriggerSource: it cannot be triggered by the host");
+    }
     if (s.trigger_source) {
       feature("TriggerMode", &notes, &failed, [&](GError** e) { arv_camera_set_string(camera_, "TriggerMode", "On", e); });
       feature("TriggerSource", &notes, &failed,

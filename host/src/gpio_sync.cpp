@@ -187,6 +187,7 @@ class GpioSync::Impl {
   int64_t first_edge_ = 0;
   int64_t next_pulse_ = 0;
   StrobeEdgePairer pairer_;
+  bool strobe_active_low_ = false;
 };
 
 GpioSync::GpioSync(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -223,6 +224,7 @@ HostResult<std::unique_ptr<GpioSync>> GpioSync::strobe(const GpioStrobeOptions& 
 std::unique_ptr<GpioSync> GpioSync::strobe(const GpioStrobeOptions& options, std::unique_ptr<GpioSyncLine> line) {
   auto impl = std::make_unique<Impl>(std::move(line));
   impl->pairer_ = StrobeEdgePairer(options.frame_period_ns);
+  impl->strobe_active_low_ = options.active_low;
   return std::unique_ptr<GpioSync>(new GpioSync(std::move(impl)));
 }
 
@@ -232,6 +234,16 @@ HostResult<uint64_t> GpioSync::run(const std::atomic<bool>& stop, uint64_t max_f
 }
 
 int64_t GpioSync::first_edge_ns() const { return impl_->first_edge_; }
+
+std::string GpioSync::schedule_text() const {
+  if (!impl_->is_trigger_) {
+    return fmt::format("strobe {} (active {})", line_name(), impl_->strobe_active_low_ ? "low" : "high");
+  }
+  const int64_t first = impl_->first_edge_, period = impl_->trigger_.frame_period_ns;
+  return fmt::format("trigger {}: pulse k rises at rig time {} + k * {} ns (boards: gpio_edge_epoch_ns {}, "
+                     "gpio_edge_period_ns {}), {} ns wide",
+                     line_name(), first, period, first, period, impl_->trigger_.exposure_ns);
+}
 const std::string& GpioSync::line_name() const { return impl_->line_->name(); }
 
 }  // namespace tetrapulse::host

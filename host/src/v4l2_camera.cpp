@@ -87,6 +87,11 @@ class V4l2Camera final : public Camera {
       if (xioctl(fd_, VIDIOC_S_PARM, &parm) < 0) notes.push_back(name() + ": device does not set its frame rate");
     }
     if (s.packet_size) notes.push_back(name() + ": V4L2 has no feature GevSCPSPacketSize");
+    if (s.trigger_source && s.trigger_required) {
+      return host_error(HostErrorKind::kBadInput, name(),
+                        "V4L2 has no hardware trigger (TriggerSource): the host cannot trigger this camera; wire its strobe "
+                        "to --sync-strobe, or run without sync");
+    }
     if (s.trigger_source) notes.push_back(name() + ": V4L2 has no feature TriggerSource (free-running)");
     if (s.strobe_line) notes.push_back(name() + ": V4L2 has no feature LineSource (no strobe output)");
     format_ = fmt.fmt.pix;

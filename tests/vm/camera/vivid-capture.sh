@@ -34,4 +34,14 @@ cat $work/wrong.log
 [ "$rc" -eq 8 ] || fail "the mismatched run exited $rc, not 8 (frames skipped)"
 grep -q "640x480 image, camera.yaml says 752x480" $work/wrong.log || fail "the size mismatch was not named"
 [ "$(($(wc -l < $work/wrong/frames.csv) - 1))" -eq 0 ] || fail "frames of the wrong size were written"
-echo "vivid capture: 30 frames recorded; the mismatched camera.yaml refused"
+
+# The host cannot trigger a V4L2 camera: --sync-trigger is refused before any frame,
+# naming why (its stamps would not be the host's pulses).
+chip=$(gpio_sim_chip trig trigger) || fail "cannot create a gpio-sim chip"
+rc=0
+timeout 60 tetrapulse record --camera "v4l2:$cap" --sync-trigger "$chip:0" --frame-rate 15 --frames 3 \
+  --camera-info $work/camera.yaml --targets $work/sim/targets.yaml --out $work/trig > $work/trig.log 2>&1 || rc=$?
+cat $work/trig.log
+[ "$rc" -ne 0 ] || fail "record --sync-trigger on a V4L2 camera succeeded"
+grep -q "V4L2 has no hardware trigger" $work/trig.log || fail "the refusal does not say why"
+echo "vivid capture: 30 frames recorded; the mismatched camera.yaml refused; --sync-trigger refused"

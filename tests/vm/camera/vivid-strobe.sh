@@ -1,4 +1,5 @@
-# Exposure stamps from a strobe, in the same process as the capture: vivid's
+# Exposure stamps from a strobe, in the same process as the capture (and the
+# boards' CAN time sync from it too, --sync-can on vcan0, seen by candump): vivid's
 # webcam input at 15 fps, a gpio-sim line pulsed 2 ms before each of its frames
 # (vivid_strobe_probe, phase-locked to vivid's ticks through its metadata
 # node), `tetrapulse record --camera v4l2:DEV --sync-strobe CHIP:LINE` stamping
@@ -43,11 +44,16 @@ echo 'name == "tetrapulse-sync"' > $tr/events/irq/irq_handler_entry/filter
 echo 1 > $tr/events/irq/irq_handler_entry/enable
 echo > $tr/trace
 echo 1 > $tr/tracing_on
+ip link add dev vcan0 type vcan || fail "cannot create vcan0"
+ip link set up vcan0
+candump -L vcan0 > $work/can.log &
+candump_pid=$!
+trap 'kill $pulse_pid $candump_pid 2>/dev/null || true' EXIT
 rc=0
 timeout 90 tetrapulse record --camera "v4l2:$cap" --pixel-format Mono8 --frame-rate 15 --sync-strobe "$chip:0" \
-  --frames 30 --camera-info $work/camera.yaml --targets $work/sim/targets.yaml --out $work/rec > $work/record.log 2>&1 || rc=$?
+  --sync-can vcan0 --can-rate 20 --frames 30 --camera-info $work/camera.yaml --targets $work/sim/targets.yaml --out $work/rec > $work/record.log 2>&1 || rc=$?
 echo 0 > $tr/tracing_on
-kill $pulse_pid
+kill $pulse_pid $candump_pid
 wait $pulse_pid || true
 sed -n 's/.* \([0-9]*\.[0-9]*\): irq_handler_entry: .*name=tetrapulse-sync.*/\1/p' $tr/trace > $work/edges.txt
 cat $work/record.log $work/pulse.log
@@ -60,3 +66,10 @@ missed=$(sed -n 's/.*, \([0-9]*\) frames without an exposure.*/\1/p' $work/recor
 rig_dataset_check $work/rec 30 || fail "the recording breaks the contract"
 vivid_strobe_probe check --log $work/pulses.txt --edges $work/edges.txt --recording $work/rec --tolerance-us 100 || fail "strobe stamps do not match the pulses"
 echo "strobe: $missed frames without a pulse"
+# The boards' time sync went out from the same process while it recorded: a Sync and
+# its FollowUp per round (two frames each way on the wire as candump sees them).
+syncs=$(sed -n 's/.*; \([0-9]*\) CAN time syncs on vcan0.*/\1/p' $work/record.log)
+frames_on_bus=$(wc -l < $work/can.log)
+[ -n "$syncs" ] && [ "$syncs" -ge 10 ] || fail "record reported ${syncs:-no} CAN time syncs on vcan0 (>= 10 expected at 20 Hz over 2 s)"
+[ "$frames_on_bus" -ge $((2 * syncs)) ] || fail "candump saw $frames_on_bus frames on vcan0 for $syncs syncs"
+echo "CAN time sync: $syncs rounds reported, $frames_on_bus frames on vcan0"

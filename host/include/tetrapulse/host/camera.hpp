@@ -27,6 +27,9 @@ struct CameraSettings {
   std::optional<double> frame_rate_hz;     // AcquisitionFrameRate (Hz)
   std::string pixel_format;                // "Mono8", "Mono16", "BayerRG8", ... ("": the camera's)
   std::optional<std::string> trigger_source;  // TriggerMode=On, TriggerSource=this ("Line0")
+  // The host triggers every exposure (--sync-trigger): a camera that cannot take the
+  // trigger is an error, not a note, since its frames would not be the host's pulses.
+  bool trigger_required = false;
   std::optional<std::string> strobe_line;     // LineSelector=this, LineSource=ExposureActive ("Line1")
   std::optional<int> width, height;        // image size (pixels)
   std::optional<int> packet_size;          // GigE Vision: GevSCPSPacketSize (bytes; jumbo frames: fewer packets to lose)

@@ -95,6 +95,10 @@ class GpioSync {
   // Trigger mode: rig time of pulse 0 (for the boards' gpio_edge_epoch_ns).
   int64_t first_edge_ns() const;
   const std::string& line_name() const;
+  // For the boards' configuration and logs: "trigger LINE: pulse k rises at rig time F +
+  // k * P ns (boards: gpio_edge_epoch_ns F, gpio_edge_period_ns P), E ns wide", or
+  // "strobe LINE (active high)".
+  std::string schedule_text() const;
 
  private:
   class Impl;
