@@ -81,10 +81,11 @@ void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exp
     if (!(e > 0)) continue;
     const Eigen::Vector3d c = steps == 1 ? c1 : centre_in_camera(light, 0.5 * static_cast<double>(a + b));
     if (!in_field_of_view(c, r)) continue;
-    const double beam = beam_factor(light, c, 0.5 * static_cast<double>(a + b));
+    // A painted ball: the time it is in view (ms); its shading comes per cell below.
+    const double beam = light.painted ? 1.0 : beam_factor(light, c, 0.5 * static_cast<double>(a + b));
     if (!(beam > 0)) continue;
     if (!sphere_outline(cam, c, r, settings_.outline_tolerance_px, &outlines_[weights_.size()])) continue;
-    weights_.push_back(beam * e * radiance_e_per_ns * static_cast<double>(b - a));
+    weights_.push_back(beam * e * (light.painted ? 1e-6 : radiance_e_per_ns) * static_cast<double>(b - a));
   }
   if (weights_.empty()) return;
 
@@ -120,6 +121,7 @@ void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exp
   const double per_cell = 1.0 / (s * s);
   for (size_t k = 0; k < weights_.size(); ++k) patch_.add_polygon(outlines_[k], weights_[k] * per_cell, s);
   patch_.resolve();
+  if (light.painted) shade_painted(light, c1, 0.5 * (t_start + t_end), s);
 
   response->apply(FineImage{patch_.row(0), pw, ph, pw + 1, x0, y0}, &blurred_);
   const PixelImage& b = blurred_;
@@ -128,6 +130,39 @@ void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exp
     const double* src = b.data.data() + static_cast<size_t>(j) * static_cast<size_t>(b.width);
     for (int i = std::max(0, -b.x0); i < b.width && b.x0 + i < light_e->cols; ++i) {
       dst[b.x0 + i] += static_cast<float>(src[i]);
+    }
+  }
+}
+
+// Each fine cell of the patch holds (covered area) x (time in view, ms). A painted
+// ball there shows paint x (ambient + (1 - ambient) max(0, n.l)), n the sphere's
+// normal where the cell centre's ray meets it (the limb's normal for a ray that
+// passes by: edge cells), l the light in the camera frame; and it hides the
+// background, whose light the sensor adds everywhere, so that is taken off. The
+// ball's position is the exposure's middle (shading moves little within one).
+void FrameRenderer::shade_painted(const LightSphere& light, const Eigen::Vector3d& centre, double t_ns, int s) {
+  const LensProjector& cam = scene_.camera;
+  const Eigen::Vector3d l_C = (scene_.camera_motion.at(t_ns * 1e-9).R.transpose() * scene_.light_direction_W).normalized();
+  Eigen::Vector2d centre_px;
+  if (!cam.project(centre, &centre_px)) centre_px = Eigen::Vector2d(cam.width() / 2.0, cam.height() / 2.0);
+  const double floor = sensor_.background_e_per_ms_at(static_cast<int>(std::lround(centre_px.x())),
+                                                      static_cast<int>(std::lround(centre_px.y())));
+  const double r = light.radius_m, ambient = scene_.ambient;
+  for (int j = 0; j < patch_.height(); ++j) {
+    double* row = patch_.row(j);
+    for (int i = 0; i < patch_.width(); ++i) {
+      if (row[i] == 0) continue;
+      // Fine cell (x0 + i, y0 + j) is centred on pixel coordinate (cell + 0.5) / s - 0.5.
+      const Eigen::Vector2d u((patch_.x0() + i + 0.5) / s - 0.5, (patch_.y0() + j + 0.5) / s - 0.5);
+      Eigen::Vector3d d;
+      if (!cam.unproject(u, &d)) d = centre.normalized();
+      d.normalize();
+      const double along = d.dot(centre);
+      const double miss2 = centre.squaredNorm() - along * along;  // squared distance of the ray from the centre
+      const Eigen::Vector3d hit = miss2 < r * r ? d * (along - std::sqrt(r * r - miss2)) : d * along;
+      const Eigen::Vector3d n = (hit - centre).normalized();
+      const double shade = ambient + (1.0 - ambient) * std::max(0.0, n.dot(l_C));
+      row[i] *= light.paint_e_per_ms * shade - floor;
     }
   }
 }

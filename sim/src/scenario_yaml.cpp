@@ -194,11 +194,11 @@ void read_target_simulation(Fields& f, const YAML::Node& node, size_t index, boo
   const std::string path = fmt::format("targets[{}]", index);
   MapReader r(f, node, path,
               {"id", "name", "marker_diameter_m", "markers", "radiance_e_per_ms", "board", "occlusions", "motion",
-               "beam_exponent", "beam_axis", "radiance_spread"});
+               "beam_exponent", "beam_axis", "radiance_spread", "paint_e_per_ms", "appearance", "colour"});
   // The markers themselves were read by the targets.yaml reader; only unknown keys are checked here.
   const YAML::Node markers = r.child("markers");
   for (size_t k = 0; k < markers.size() && r.ok(); ++k) {
-    MapReader m(f, markers[k], fmt::format("{}.markers[{}]", path, k), {"position_m", "code"});
+    MapReader m(f, markers[k], fmt::format("{}.markers[{}]", path, k), {"position_m", "code", "appearance", "colour"});
   }
   out->radiance_e_per_ms = r.number("radiance_e_per_ms", Range::non_negative(), out->radiance_e_per_ms);
   out->beam_exponent = r.number("beam_exponent", Range::closed(0, 100), out->beam_exponent);
@@ -206,6 +206,7 @@ void read_target_simulation(Fields& f, const YAML::Node& node, size_t index, boo
   if (r.ok() && !(axis.norm() > 0)) r.fail("beam_axis", "must not be zero");
   if (r.ok()) out->beam_axis_B = axis.normalized();
   out->radiance_spread = r.number("radiance_spread", Range::closed(0, 2), out->radiance_spread);
+  if (r.has("paint_e_per_ms")) out->paint_e_per_ms = r.number("paint_e_per_ms", Range::positive());
   const YAML::Node board = r.child("board", false);
   if (board.IsDefined()) {
     read_board(f, board, path + ".board", synchronized, &out->clock);
@@ -254,7 +255,7 @@ DatasetResult<Scenario> parse_scenario(const std::string& text, const std::strin
   s.source_text = text;
   MapReader top(f, *doc, "",
                 {"name", "description", "seed", "frames", "camera", "sensor", "render", "timebase", "modulation",
-                 "codebook", "targets", "distractors"});
+                 "codebook", "targets", "distractors", "lighting"});
   s.name = top.text("name", std::filesystem::path(name).stem().string());
   s.description = top.text("description", "");
   s.seed = static_cast<uint64_t>(top.integer("seed", Range::closed(0, 9e18), 1));
@@ -262,6 +263,13 @@ DatasetResult<Scenario> parse_scenario(const std::string& text, const std::strin
   read_camera(f, top.child("camera"), &s.camera, &s.camera_motion, &s.render);
   if (top.has("sensor")) read_sensor(f, top.child("sensor"), &s.sensor);
   if (top.has("render")) read_render(f, top.child("render"), &s.render);
+  if (top.has("lighting")) {
+    MapReader l(f, top.child("lighting"), "lighting", {"direction", "ambient"});
+    const Eigen::Vector3d d = l.vec3("direction", Range::closed(-1e6, 1e6), s.light_direction_W);
+    if (l.ok() && !(d.norm() > 0)) l.fail("direction", "must not be zero");
+    if (l.ok()) s.light_direction_W = d.normalized();
+    s.ambient = l.number("ambient", Range::closed(0, 1), s.ambient);
+  }
   if (f.failed()) return tl::unexpected(f.error());
 
   // timebase, modulation and targets: exactly as targets.yaml reads them.

@@ -30,6 +30,8 @@ Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFac
   Scene scene;
   scene.camera = LensProjector(scenario.camera);
   scene.camera_motion = Trajectory(scenario.camera_motion, stream_seed(seed, kStreamMotion, 0));
+  scene.light_direction_W = scenario.light_direction_W;
+  scene.ambient = scenario.ambient;
   uint64_t motion_index = 1;
   const TargetsFile& tf = scenario.targets;
   for (size_t k = 0; k < tf.targets.size(); ++k) {
@@ -55,6 +57,10 @@ Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFac
       }
       light.beam_exponent = sim.beam_exponent;
       light.beam_axis_B = sim.beam_axis_B;
+      if (sim.paint_e_per_ms) {
+        light.painted = true;
+        light.paint_e_per_ms = *sim.paint_e_per_ms;
+      }
       light.emitter = emitter;
       light.emitter_index = m;
       st.lights.push_back(static_cast<int>(scene.lights.size()));

@@ -34,6 +34,13 @@ SensorModel::SensorModel(int width, int height, const SensorConfig& config, uint
   }
 }
 
+double SensorModel::background_e_per_ms_at(int x, int y) const {
+  x = std::clamp(x, 0, background_.cols - 1);
+  y = std::clamp(y, 0, background_.rows - 1);
+  const float g = gain_.at<float>(y, x);
+  return g > 0 ? background_.at<float>(y, x) / g : config_.background_e_per_ms;
+}
+
 void SensorModel::prepare_dark_frame(int64_t exposure_ns) {
   if (exposure_ns == dark_exposure_ns_) return;
   dark_exposure_ns_ = exposure_ns;

@@ -279,5 +279,51 @@ TEST(SphereRender, BeamPatternScalesTheFluxWithTheViewAngle) {
   EXPECT_EQ(cv::sum(render_sphere(info, C, 0.015, 0.6, 1, -at_camera))[0], 0.0);
 }
 
+// A painted ball (issue 19): lit by a distant light from +x (camera frame), ambient
+// 0.2, 100 e/ms where it faces the light; the floor behind it gives 50 e/ms. Inside
+// its image each pixel must hold 1 ms x (100 (0.2 + 0.8 max(0, n.x)) - 50): the
+// floor it hides taken off, the side towards the light brighter, the far side at
+// the ambient level; outside it, nothing.
+TEST(SphereRender, APaintedBallIsShadedByTheLightAndHidesTheFloor) {
+  const CameraInfo info = pinhole_752();
+  const Eigen::Vector3d C(0, 0, 1);
+  const double r = 0.05;  // an image radius of ~19 px
+  Scene scene;
+  scene.camera = LensProjector(info);
+  scene.bodies.emplace_back();
+  scene.emitters.push_back(std::make_unique<FlickerEmitter>(Flicker{}));
+  scene.light_direction_W = Eigen::Vector3d::UnitX();
+  scene.ambient = 0.2;
+  LightSphere ball;
+  ball.position_m = C;
+  ball.radius_m = r;
+  ball.painted = true;
+  ball.paint_e_per_ms = 100;
+  scene.lights.push_back(ball);
+  SensorConfig flat;
+  flat.background_e_per_ms = 50;
+  flat.texture_contrast = 0;
+  flat.prnu = 0;
+  SensorModel sensor(info.width, info.height, flat, 1);
+  FrameRenderer renderer(scene, RenderSettings{}, sensor);
+  cv::Mat light_e(info.height, info.width, CV_32F, cv::Scalar(0));
+  renderer.add_light(0, 1'000'000, &light_e);
+
+  // The normal where pixel (x, y)'s ray meets the ball (pinhole, no distortion).
+  const auto expected = [&](int x, int y) {
+    const Eigen::Vector3d d = Eigen::Vector3d((x - info.cx) / info.fx, (y - info.cy) / info.fy, 1).normalized();
+    const double along = d.dot(C), miss2 = C.squaredNorm() - along * along;
+    const Eigen::Vector3d n = (d * (along - std::sqrt(r * r - miss2)) - C).normalized();
+    return 100 * (0.2 + 0.8 * std::max(0.0, n.x())) - 50;
+  };
+  const int cx = 376, cy = 240;
+  for (int dx : {-12, -6, 0, 6, 12}) {
+    EXPECT_NEAR(light_e.at<float>(cy, cx + dx), expected(cx + dx, cy), 1.5) << "pixel " << dx << " right of the centre";
+  }
+  EXPECT_GT(light_e.at<float>(cy, cx + 12), 15.0f);   // the lit side, brighter than the floor
+  EXPECT_NEAR(light_e.at<float>(cy, cx - 12), -30.0f, 1.5f);  // the shadowed side: ambient only
+  EXPECT_EQ(light_e.at<float>(cy, cx + 40), 0.0f);   // beside the ball: the floor as it is
+}
+
 }  // namespace
 }  // namespace tetrapulse::sim

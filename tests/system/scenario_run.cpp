@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "tetrapulse/localizer/blob_extractor.hpp"
+#include "tetrapulse/localizer/target_appearance.hpp"
 #include "tetrapulse/datasets/frame_source.hpp"
 #include "tetrapulse/datasets/rig_dataset.hpp"
 #include "tetrapulse/sim/dataset_simulation.hpp"
@@ -172,7 +173,10 @@ tl::expected<ScenarioRun, std::string> run_scenario(const sim::Scenario& scenari
 
   // The oracle, frame by frame.
   const CameraModel camera(dataset->camera());
-  BlobExtractor extractor;
+  // The extractor the localizer uses for these targets (dark or coloured markers).
+  auto blob_config = blobs_for_targets(BlobExtractorConfig{}, dataset->targets());
+  if (!blob_config) return tl::unexpected(blob_config.error());
+  BlobExtractor extractor(*blob_config);
   BlobExtraction extraction;
   for (size_t i = 0; i < run.frames.size(); ++i) {
     auto image = dataset->load_image(i);

@@ -4,7 +4,8 @@
 // evaluated against its ground truth, and compared with an oracle.
 //
 // The oracle is handed the true correspondences: in every frame it extracts
-// blobs from the whole image (the localizer's own BlobExtractor), takes for each
+// blobs from the whole image (the localizer's own BlobExtractor, set up for the
+// targets' appearance as the localizer's is), takes for each
 // marker the blob nearest the marker's true projection (within max(3 px, the
 // marker's image radius)), and solves cv::solvePnP on them (four markers:
 // SOLVEPNP_SQPNP then solvePnPRefineLM; three: SOLVEPNP_ITERATIVE started at the

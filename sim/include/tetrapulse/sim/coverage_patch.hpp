@@ -32,6 +32,7 @@ class CoveragePatch {
   // Value of cell (x0 + i, y0 + j) after resolve().
   double at(int i, int j) const { return acc_[static_cast<size_t>(j) * stride() + static_cast<size_t>(i)]; }
   const double* row(int j) const { return acc_.data() + static_cast<size_t>(j) * stride(); }
+  double* row(int j) { return acc_.data() + static_cast<size_t>(j) * stride(); }
 
  private:
   size_t stride() const { return static_cast<size_t>(width_) + 1; }

@@ -12,6 +12,8 @@
 // sphere so that its image spans at least min_cells_across cells in radius. Sub-steps are
 // chosen per sphere so that it moves at most blur_step_px between them (motion
 // blur); a still sphere takes one.
+// A painted ball (LightSphere::painted) replaces radiance x emission by its shading
+// under the scene's light, per fine cell, less the background it hides.
 // The sensor (sensor_model.hpp) then adds background, noise and quantisation.
 #include <cstdint>
 #include <vector>
@@ -52,6 +54,9 @@ class FrameRenderer {
   // Radiance factor of the LED beam towards the camera (1 for a uniform light) at rig time t_ns, centre c (camera frame).
   double beam_factor(const LightSphere& light, const Eigen::Vector3d& centre_C, double t_ns) const;
   void add_sphere(const LightSphere& light, int64_t t0_ns, int64_t exposure_ns, cv::Mat* light_e);
+  // A painted ball's patch (coverage x time in view) turned into its light less the
+  // background it hides; centre in the camera frame at rig time t_ns, s cells per pixel.
+  void shade_painted(const LightSphere& light, const Eigen::Vector3d& centre, double t_ns, int s);
 
   const Scene& scene_;
   RenderSettings settings_;

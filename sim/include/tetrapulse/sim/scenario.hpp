@@ -8,6 +8,7 @@
 // file says _s), radians (degrees in files, where the field name says _deg).
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,9 @@ struct TargetSimulation {
   // Per-marker brightness spread: each marker's radiance is multiplied by
   // exp(radiance_spread N(0,1)) drawn once from the seed (0: all alike).
   double radiance_spread = 0;
+  // Painted balls instead of LEDs (passive markers): electrons per fully covered
+  // pixel per ms where the surface faces the scene's light squarely (unset: LEDs).
+  std::optional<double> paint_e_per_ms;
   BoardClockSpec clock;               // its board's clock (free_running follows the time base)
   std::array<TimeIntervals, 4> occluded;  // per marker: when it is hidden from the camera
 };
@@ -67,6 +71,10 @@ struct Scenario {
   TargetsFile targets;                   // written to targets.yaml as is
   std::vector<TargetSimulation> simulation;  // one per targets.targets entry, same order
   std::vector<Distractor> distractors;
+  // The light painted markers reflect (`lighting:`): world direction to a distant
+  // source, unit, and the share of it on their shadowed side.
+  Eigen::Vector3d light_direction_W = Eigen::Vector3d::UnitZ();
+  double ambient = 0.3;
   std::string source_text;  // the YAML it was read from
 };
 

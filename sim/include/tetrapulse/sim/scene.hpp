@@ -25,6 +25,13 @@ struct LightSphere {
   double beam_exponent = 0;      // radiance x cos(view angle off beam_axis_B)^beam_exponent (0: uniform)
   Eigen::Vector3d beam_axis_B = Eigen::Vector3d::UnitZ();  // body frame, unit
   int emitter_index = 0;         // which light of that emitter (a marker's index 0..3)
+  // A painted ball (a passive marker) instead of a light: it reflects the scene's
+  // light (Scene::light_direction_W; Lambertian, Scene::ambient of it on the shadowed
+  // side) and hides the background behind it. paint_e_per_ms: electrons per fully
+  // covered pixel per ms where its surface faces the light squarely. The emitter
+  // only says when it is hidden (a constant one: never); radiance and beam are unused.
+  bool painted = false;
+  double paint_e_per_ms = 0;
 };
 
 // A target: a body carrying four markers, named by the id it has in targets.yaml.
@@ -41,6 +48,11 @@ struct Scene {
   std::vector<std::unique_ptr<LedEmitter>> emitters;
   std::vector<LightSphere> lights;
   std::vector<SceneTarget> targets;
+  // The light painted balls reflect: a distant source in this direction (world
+  // frame, unit, pointing to the light) and the share of it that reaches their
+  // shadowed side (sky, walls, [0, 1]).
+  Eigen::Vector3d light_direction_W = Eigen::Vector3d::UnitZ();
+  double ambient = 0.3;
 
   // Pose of body `body` in the camera frame at rig time t (seconds): p_C = R p_B + t.
   Pose body_in_camera(int body, double t_s) const {

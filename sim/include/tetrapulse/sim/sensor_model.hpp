@@ -46,6 +46,10 @@ class SensorModel {
   SensorModel(int width, int height, const SensorConfig& config, uint64_t seed);
 
   const SensorConfig& config() const { return config_; }
+  // The background's light at pixel (x, y) before the pixel's gain,
+  // background_e_per_ms (1 + contrast T_p) (electrons per ms): what an opaque body
+  // in front of the background takes away.
+  double background_e_per_ms_at(int x, int y) const;
   int max_dn() const { return config_.bit_depth == 16 ? 65535 : 255; }
 
   // Digitizes one exposure of `exposure_ns`. light_e: CV_32F, electrons from the
