@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <Eigen/Geometry>
+#include <opencv2/imgproc.hpp>
 
 #include "tetrapulse/sim/sphere_silhouette.hpp"
 
@@ -47,7 +48,7 @@ bool FrameRenderer::in_field_of_view(const Eigen::Vector3d& c, double radius_m) 
   return off_axis - alpha <= max_field_angle_ + kFieldMarginRad;
 }
 
-void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exposure, cv::Mat* light_e) {
+void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exposure, const Channels& out) {
   const double t_start = static_cast<double>(t0), t_end = static_cast<double>(t0 + exposure);
   const Eigen::Vector3d c0 = centre_in_camera(light, t_start);
   const Eigen::Vector3d c1 = centre_in_camera(light, 0.5 * (t_start + t_end));
@@ -123,13 +124,21 @@ void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exp
   patch_.resolve();
   if (light.painted) shade_painted(light, c1, 0.5 * (t_start + t_end), s);
 
+  // The light in each channel: its colour's share of it (a grey sensor: the mean).
   response->apply(FineImage{patch_.row(0), pw, ph, pw + 1, x0, y0}, &blurred_);
-  const PixelImage& b = blurred_;
+  for (const Channel& c : out) add_pixels(blurred_, c.rgb_index < 0 ? light.rgb.mean() : light.rgb[c.rgb_index], c.image);
+  if (light.painted) {  // the background the ball hides, in every channel alike
+    response->apply(FineImage{hidden_.data(), pw, ph, pw + 1, x0, y0}, &blurred_);
+    for (const Channel& c : out) add_pixels(blurred_, -1.0, c.image);
+  }
+}
+
+void FrameRenderer::add_pixels(const PixelImage& b, double factor, cv::Mat* light_e) {
   for (int j = std::max(0, -b.y0); j < b.height && b.y0 + j < light_e->rows; ++j) {
     float* dst = light_e->ptr<float>(b.y0 + j);
     const double* src = b.data.data() + static_cast<size_t>(j) * static_cast<size_t>(b.width);
     for (int i = std::max(0, -b.x0); i < b.width && b.x0 + i < light_e->cols; ++i) {
-      dst[b.x0 + i] += static_cast<float>(src[i]);
+      dst[b.x0 + i] += static_cast<float>(factor * src[i]);
     }
   }
 }
@@ -137,9 +146,10 @@ void FrameRenderer::add_sphere(const LightSphere& light, int64_t t0, int64_t exp
 // Each fine cell of the patch holds (covered area) x (time in view, ms). A painted
 // ball there shows paint x (ambient + (1 - ambient) max(0, n.l)), n the sphere's
 // normal where the cell centre's ray meets it (the limb's normal for a ray that
-// passes by: edge cells), l the light in the camera frame; and it hides the
-// background, whose light the sensor adds everywhere, so that is taken off. The
-// ball's position is the exposure's middle (shading moves little within one).
+// passes by: edge cells), l the light in the camera frame: the patch becomes that.
+// And it hides the background, whose light the sensor adds everywhere: hidden_
+// gets (covered area) x (time) x background, taken off afterwards. The ball's
+// position is the exposure's middle (shading moves little within one).
 void FrameRenderer::shade_painted(const LightSphere& light, const Eigen::Vector3d& centre, double t_ns, int s) {
   const LensProjector& cam = scene_.camera;
   const Eigen::Vector3d l_C = (scene_.camera_motion.at(t_ns * 1e-9).R.transpose() * scene_.light_direction_W).normalized();
@@ -148,10 +158,14 @@ void FrameRenderer::shade_painted(const LightSphere& light, const Eigen::Vector3
   const double floor = sensor_.background_e_per_ms_at(static_cast<int>(std::lround(centre_px.x())),
                                                       static_cast<int>(std::lround(centre_px.y())));
   const double r = light.radius_m, ambient = scene_.ambient;
+  const size_t stride = static_cast<size_t>(patch_.width()) + 1;
+  hidden_.assign(stride * static_cast<size_t>(patch_.height()), 0.0);
   for (int j = 0; j < patch_.height(); ++j) {
     double* row = patch_.row(j);
+    double* hidden = hidden_.data() + static_cast<size_t>(j) * stride;
     for (int i = 0; i < patch_.width(); ++i) {
       if (row[i] == 0) continue;
+      hidden[i] = row[i] * floor;
       // Fine cell (x0 + i, y0 + j) is centred on pixel coordinate (cell + 0.5) / s - 0.5.
       const Eigen::Vector2d u((patch_.x0() + i + 0.5) / s - 0.5, (patch_.y0() + j + 0.5) / s - 0.5);
       Eigen::Vector3d d;
@@ -162,20 +176,47 @@ void FrameRenderer::shade_painted(const LightSphere& light, const Eigen::Vector3
       const Eigen::Vector3d hit = miss2 < r * r ? d * (along - std::sqrt(r * r - miss2)) : d * along;
       const Eigen::Vector3d n = (hit - centre).normalized();
       const double shade = ambient + (1.0 - ambient) * std::max(0.0, n.dot(l_C));
-      row[i] *= light.paint_e_per_ms * shade - floor;
+      row[i] *= light.paint_e_per_ms * shade;
     }
   }
 }
 
 void FrameRenderer::add_light(int64_t t0_ns, int64_t exposure_ns, cv::Mat* light_e) {
-  for (const LightSphere& light : scene_.lights) add_sphere(light, t0_ns, exposure_ns, light_e);
+  const Channels grey{Channel{light_e, -1}};
+  for (const LightSphere& light : scene_.lights) add_sphere(light, t0_ns, exposure_ns, grey);
+}
+
+void FrameRenderer::add_light_rgb(int64_t t0_ns, int64_t exposure_ns, const std::array<cv::Mat*, 3>& rgb_e) {
+  const Channels rgb{Channel{rgb_e[0], 0}, Channel{rgb_e[1], 1}, Channel{rgb_e[2], 2}};
+  for (const LightSphere& light : scene_.lights) add_sphere(light, t0_ns, exposure_ns, rgb);
 }
 
 void FrameRenderer::render(int64_t t0_ns, int64_t exposure_ns, uint64_t noise_seed, cv::Mat* image) {
-  light_.create(scene_.camera.height(), scene_.camera.width(), CV_32F);
+  const int w = scene_.camera.width(), h = scene_.camera.height();
+  light_.create(h, w, CV_32F);
   light_.setTo(0);
-  add_light(t0_ns, exposure_ns, &light_);
-  sensor_.expose(light_, exposure_ns, noise_seed, image);
+  if (!sensor_.config().bayer) {
+    add_light(t0_ns, exposure_ns, &light_);
+    sensor_.expose(light_, exposure_ns, noise_seed, image);
+    return;
+  }
+  // A Bayer colour sensor (RGGB: R at even rows and columns, B at odd ones): each
+  // pixel collects its filter's channel; the raw frame is demosaiced as a camera's
+  // driver would (OpenCV bilinear: its BG code names the RGGB layout).
+  for (cv::Mat& c : channel_light_) {
+    c.create(h, w, CV_32F);
+    c.setTo(0);
+  }
+  add_light_rgb(t0_ns, exposure_ns, {&channel_light_[0], &channel_light_[1], &channel_light_[2]});
+  for (int y = 0; y < h; ++y) {
+    float* dst = light_.ptr<float>(y);
+    for (int x = 0; x < w; ++x) {
+      const int channel = (y % 2 == 0 && x % 2 == 0) ? 0 : (y % 2 == 1 && x % 2 == 1) ? 2 : 1;
+      dst[x] = channel_light_[static_cast<size_t>(channel)].at<float>(y, x);
+    }
+  }
+  sensor_.expose(light_, exposure_ns, noise_seed, &raw_);
+  cv::cvtColor(raw_, *image, cv::COLOR_BayerBG2BGR);
 }
 
 }  // namespace tetrapulse::sim

@@ -104,7 +104,7 @@ void read_camera(Fields& f, const YAML::Node& node, CameraInfo* cam, MotionSpec*
 void read_sensor(Fields& f, const YAML::Node& node, SensorConfig* s) {
   MapReader r(f, node, "sensor",
               {"bit_depth", "gain_e_per_dn", "read_noise_e", "full_well_e", "black_level_dn", "background_e_per_ms",
-               "texture_contrast", "texture_scale_px", "prnu", "dsnu_e", "noise", "blooming"});
+               "texture_contrast", "texture_scale_px", "prnu", "dsnu_e", "noise", "blooming", "colour_filter"});
   s->bit_depth = static_cast<int>(r.integer("bit_depth", Range::closed(8, 16), s->bit_depth));
   if (r.ok() && s->bit_depth != 8 && s->bit_depth != 16) r.fail("bit_depth", fmt::format("must be 8 or 16, got {}", s->bit_depth));
   s->gain_e_per_dn = r.number("gain_e_per_dn", Range::positive(), s->gain_e_per_dn);
@@ -118,6 +118,13 @@ void read_sensor(Fields& f, const YAML::Node& node, SensorConfig* s) {
   s->dsnu_e = r.number("dsnu_e", Range::non_negative(), s->dsnu_e);
   s->noise = r.boolean("noise", s->noise);
   s->blooming = r.number("blooming", Range::closed(0, 1), s->blooming);
+  const std::string filter = r.text("colour_filter", "none");
+  if (filter == "rggb") {
+    s->bayer = true;
+  } else if (filter != "none" && r.ok()) {
+    r.fail("colour_filter", fmt::format("'{}' is not none or rggb", filter));
+  }
+  if (r.ok() && s->bayer && s->bit_depth != 8) r.fail("colour_filter", "a Bayer sensor writes 8-bit colour PNGs: bit_depth must be 8");
 }
 
 void read_render(Fields& f, const YAML::Node& node, RenderSettings* s) {
@@ -194,7 +201,7 @@ void read_target_simulation(Fields& f, const YAML::Node& node, size_t index, boo
   const std::string path = fmt::format("targets[{}]", index);
   MapReader r(f, node, path,
               {"id", "name", "marker_diameter_m", "markers", "radiance_e_per_ms", "board", "occlusions", "motion",
-               "beam_exponent", "beam_axis", "radiance_spread", "paint_e_per_ms", "appearance", "colour"});
+               "beam_exponent", "beam_axis", "radiance_spread", "paint_e_per_ms", "rgb", "appearance", "colour"});
   // The markers themselves were read by the targets.yaml reader; only unknown keys are checked here.
   const YAML::Node markers = r.child("markers");
   for (size_t k = 0; k < markers.size() && r.ok(); ++k) {
@@ -207,6 +214,8 @@ void read_target_simulation(Fields& f, const YAML::Node& node, size_t index, boo
   if (r.ok()) out->beam_axis_B = axis.normalized();
   out->radiance_spread = r.number("radiance_spread", Range::closed(0, 2), out->radiance_spread);
   if (r.has("paint_e_per_ms")) out->paint_e_per_ms = r.number("paint_e_per_ms", Range::positive());
+  out->rgb = r.vec3("rgb", Range::closed(0, 1), out->rgb);
+  if (r.ok() && !(out->rgb.maxCoeff() > 0)) r.fail("rgb", "must not be black");
   const YAML::Node board = r.child("board", false);
   if (board.IsDefined()) {
     read_board(f, board, path + ".board", synchronized, &out->clock);

@@ -57,6 +57,7 @@ Scene build_scene(const Scenario& scenario, uint64_t seed, const BoardEmitterFac
       }
       light.beam_exponent = sim.beam_exponent;
       light.beam_axis_B = sim.beam_axis_B;
+      light.rgb = sim.rgb;
       if (sim.paint_e_per_ms) {
         light.painted = true;
         light.paint_e_per_ms = *sim.paint_e_per_ms;

@@ -325,5 +325,42 @@ TEST(SphereRender, APaintedBallIsShadedByTheLightAndHidesTheFloor) {
   EXPECT_EQ(light_e.at<float>(cy, cx + 40), 0.0f);   // beside the ball: the floor as it is
 }
 
+// Through a Bayer sensor (RGGB, demosaiced): a red painted ball stays red at its
+// centre, the grey floor stays grey, and the frame is 8-bit BGR.
+TEST(SphereRender, ABayerSensorSeesARedBallRedOnAGreyFloor) {
+  const CameraInfo info = pinhole_752();
+  Scene scene;
+  scene.camera = LensProjector(info);
+  scene.bodies.emplace_back();
+  scene.emitters.push_back(std::make_unique<FlickerEmitter>(Flicker{}));
+  scene.light_direction_W = Eigen::Vector3d(0, 0, -1);  // from the camera's side
+  LightSphere ball;
+  ball.position_m = Eigen::Vector3d(0, 0, 1);
+  ball.radius_m = 0.03;
+  ball.painted = true;
+  ball.paint_e_per_ms = 600;
+  ball.rgb = Eigen::Vector3d(0.9, 0.15, 0.1);
+  scene.lights.push_back(ball);
+  SensorConfig bayer;
+  bayer.bayer = true;
+  bayer.noise = false;
+  bayer.background_e_per_ms = 200;
+  bayer.texture_contrast = 0;
+  bayer.prnu = 0;
+  bayer.dsnu_e = 0;
+  SensorModel sensor(info.width, info.height, bayer, 1);
+  FrameRenderer renderer(scene, RenderSettings{}, sensor);
+  cv::Mat image;
+  renderer.render(0, 5'000'000, 1, &image);
+  ASSERT_EQ(image.type(), CV_8UC3);
+  const cv::Vec3b centre = image.at<cv::Vec3b>(240, 376), floor = image.at<cv::Vec3b>(100, 100);
+  // 600 e/ms x 5 ms x 0.9 / 16 e/DN + 2: R ~170 DN facing the light; G, B ~30 and ~21.
+  EXPECT_GT(centre[2], 150);
+  EXPECT_LT(centre[1], 45);
+  EXPECT_LT(centre[0], 35);
+  // The floor: 200 e/ms x 5 ms / 16 + 2 = 64.5 DN in every channel.
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(floor[c], 64, 1) << "channel " << c;
+}
+
 }  // namespace
 }  // namespace tetrapulse::sim

@@ -46,6 +46,8 @@ const Acceptance kScenarios[] = {
     // Issue 19: the paper's Experiment 2 with dark painted balls on a lit floor,
     // half in shadow, two robots told apart by geometry alone (>= 95 %).
     {"passive-dark", INFINITY, INFINITY, 0.95},
+    // ... and in colour: red painted balls through a Bayer camera, found by chroma.
+    {"colour", INFINITY, INFINITY, 0.95},
 };
 
 // Matrix rows that do not meet the acceptance lines yet (issue 14 is open on them):

@@ -15,6 +15,7 @@
 // A painted ball (LightSphere::painted) replaces radiance x emission by its shading
 // under the scene's light, per fine cell, less the background it hides.
 // The sensor (sensor_model.hpp) then adds background, noise and quantisation.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -40,10 +41,14 @@ class FrameRenderer {
  public:
   FrameRenderer(const Scene& scene, const RenderSettings& settings, SensorModel& sensor);
 
-  // Adds the electrons each pixel collects from the spheres to `light_e` (CV_32F, camera-sized).
+  // Adds the electrons each pixel collects from the spheres to `light_e` (CV_32F,
+  // camera-sized), as a grey sensor sees them (each light's mean over R, G, B).
   void add_light(int64_t t0_ns, int64_t exposure_ns, cv::Mat* light_e);
+  // The same per colour channel: rgb_e = {R, G, B}, each a whole camera-sized image.
+  void add_light_rgb(int64_t t0_ns, int64_t exposure_ns, const std::array<cv::Mat*, 3>& rgb_e);
 
-  // The whole frame: light, then the sensor (noise drawn from noise_seed).
+  // The whole frame: light, then the sensor (noise drawn from noise_seed). A Bayer
+  // sensor (SensorConfig::bayer) gives an 8-bit BGR image (CV_8UC3), demosaiced.
   void render(int64_t t0_ns, int64_t exposure_ns, uint64_t noise_seed, cv::Mat* image);
 
  private:
@@ -53,7 +58,13 @@ class FrameRenderer {
   bool in_field_of_view(const Eigen::Vector3d& centre_C, double radius_m) const;
   // Radiance factor of the LED beam towards the camera (1 for a uniform light) at rig time t_ns, centre c (camera frame).
   double beam_factor(const LightSphere& light, const Eigen::Vector3d& centre_C, double t_ns) const;
-  void add_sphere(const LightSphere& light, int64_t t0_ns, int64_t exposure_ns, cv::Mat* light_e);
+  struct Channel {
+    cv::Mat* image;
+    int rgb_index;  // 0 R, 1 G, 2 B; -1 grey
+  };
+  using Channels = std::vector<Channel>;
+  void add_sphere(const LightSphere& light, int64_t t0_ns, int64_t exposure_ns, const Channels& out);
+  static void add_pixels(const PixelImage& b, double factor, cv::Mat* light_e);
   // A painted ball's patch (coverage x time in view) turned into its light less the
   // background it hides; centre in the camera frame at rig time t_ns, s cells per pixel.
   void shade_painted(const LightSphere& light, const Eigen::Vector3d& centre, double t_ns, int s);
@@ -68,7 +79,10 @@ class FrameRenderer {
   std::vector<double> weights_;
   CoveragePatch patch_;
   PixelImage blurred_;
+  std::vector<double> hidden_;  // a painted ball's hidden background, laid out as patch_
   cv::Mat light_;
+  std::array<cv::Mat, 3> channel_light_;
+  cv::Mat raw_;
 };
 
 }  // namespace tetrapulse::sim

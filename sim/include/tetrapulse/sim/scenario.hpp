@@ -47,6 +47,9 @@ struct TargetSimulation {
   // Painted balls instead of LEDs (passive markers): electrons per fully covered
   // pixel per ms where the surface faces the scene's light squarely (unset: LEDs).
   std::optional<double> paint_e_per_ms;
+  // Its markers' colour: their light's share in R, G, B of a Bayer sensor, each
+  // 0..1 (a grey sensor takes the mean) [1 1 1].
+  Eigen::Vector3d rgb = Eigen::Vector3d::Ones();
   BoardClockSpec clock;               // its board's clock (free_running follows the time base)
   std::array<TimeIntervals, 4> occluded;  // per marker: when it is hidden from the camera
 };

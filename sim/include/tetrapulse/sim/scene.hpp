@@ -32,6 +32,9 @@ struct LightSphere {
   // only says when it is hidden (a constant one: never); radiance and beam are unused.
   bool painted = false;
   double paint_e_per_ms = 0;
+  // Its colour: the share of its light in the R, G and B channels of a Bayer sensor
+  // (a grey sensor takes their mean); white (1 1 1) by default.
+  Eigen::Vector3d rgb = Eigen::Vector3d::Ones();
 };
 
 // A target: a body carrying four markers, named by the id it has in targets.yaml.

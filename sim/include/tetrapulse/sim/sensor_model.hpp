@@ -33,6 +33,9 @@ struct SensorConfig {
   // out of a pixel, half up and half down its column, filling the neighbours up
   // to full well and passing on beyond (0: clipped charge is lost).
   double blooming = 0;
+  // A Bayer colour filter (RGGB) over the pixels; the frame renderer mosaics the
+  // light by it and demosaics the 8-bit result into a BGR image.
+  bool bayer = false;
 };
 
 // Blooming of light charge (CV_32F electrons per pixel), in place: `fraction` of
