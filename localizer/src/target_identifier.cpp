@@ -263,8 +263,33 @@ bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypot
     if (refined->rms_px < h->rms_px) h->pose = refined->pose, h->rms_px = refined->rms_px;
   }
   if (!(h->rms_px <= options_.max_rms_px)) return false;
+  if (!coded_ && !sizes_agree(tracks, *h)) return false;
   h->geometry_state = 1;
   return true;
+}
+
+bool TargetIdentifier::sizes_agree(const std::vector<CandidateTrack>& tracks, const Hypothesis& h) const {
+  const Target& target = targets_.targets[h.target];
+  const double R = target.marker_diameter_m / 2;
+  std::vector<double> ratios;
+  for (size_t m = 0; m < 4; ++m) {
+    if (h.track[m] < 0) continue;
+    const CandidateTrack& c = tracks[size_t(h.track[m])];
+    if (!c.measured || !(c.radius_px > 0)) continue;
+    // The sphere's image radius: its centre and a point R off it across the ray.
+    const Eigen::Vector3d p = h.pose.apply(target.markers[m].position_m);
+    Eigen::Vector3d across = p.cross(Eigen::Vector3d::UnitY());
+    if (across.norm() < 1e-9 * p.norm()) across = p.cross(Eigen::Vector3d::UnitX());
+    Eigen::Vector2d a, b;
+    if (!camera_.project(p, &a) || !camera_.project(p + R * across.normalized(), &b)) continue;
+    const double predicted = (b - a).norm();
+    if (predicted >= options_.min_sized_radius_px) ratios.push_back(c.radius_px / predicted);
+  }
+  if (ratios.size() < 2) return true;
+  std::sort(ratios.begin(), ratios.end());
+  const double median = ratios.size() % 2 ? ratios[ratios.size() / 2]
+                                          : 0.5 * (ratios[ratios.size() / 2 - 1] + ratios[ratios.size() / 2]);
+  return median >= options_.min_size_ratio;
 }
 
 std::vector<Identification> TargetIdentifier::identify(const std::vector<CandidateTrack>& tracks,

@@ -47,6 +47,7 @@ struct Shown {
   CodeClock clock;
   std::map<int, std::vector<int64_t>> flip;  // marker -> frames whose bit reads inverted
   int hidden = -1;                            // a marker in view that shows no light (occluded)
+  double radius_scale = 1.0;                  // blob radius over the sphere's image radius
 };
 
 // Feeds frames [0, frames) to a tracker and asks the identifier after each one.
@@ -86,7 +87,7 @@ Watch watch(const CameraModel& camera, const TargetsFile& targets, const std::ve
         Blob b;
         if (!camera.project(p, &b.centroid) || !camera.in_image(b.centroid)) continue;  // out of view: no blob
         b.centroid += 0.1 * Eigen::Vector2d(noise(rng), noise(rng));
-        b.radius = camera.info().fx * target.marker_diameter_m / 2 / p.norm();
+        b.radius = s.radius_scale * camera.info().fx * target.marker_diameter_m / 2 / p.norm();
         b.area = int(M_PI * b.radius * b.radius) + 1;
         b.intensity = 3000 * level * (1 + 0.02 * noise(rng));
         e.blobs.push_back(b);
@@ -236,6 +237,25 @@ TEST_F(Identify, ConstantMarkersAreIdentifiedByGeometryAloneOrNotAtAll) {
     expect_correct(camera, targets, s, r);
   }
   EXPECT_GE(identified, kTrials * 3 / 4);
+}
+
+TEST_F(Identify, ConstantMarkersWhoseBlobsAreTooSmallForThePoseAreNotATarget) {
+  // Four blobs of two passive targets can fit a third pose; their sizes then
+  // disagree with it (the pose puts the spheres nearer than their blobs say).
+  // Blobs of 0.6 the pose's image radius: nothing is named; of 1.6 (an LED's
+  // halo, blooming): the target is, as with sizes that agree.
+  TargetsFile targets = two_coded_targets(ModulationKind::kConstant);
+  targets.targets.resize(1);
+  const Pose pose = two_poses()[0];
+  Shown small{0, pose, CodeClock::from(targets.timebase), {}};
+  small.radius_scale = 0.6;
+  EXPECT_EQ(watch(camera, targets, {small}, 4, 3).identifications, 0);
+  Shown large = small;
+  large.radius_scale = 1.6;
+  expect_correct(camera, targets, large, watch(camera, targets, {large}, 4, 3));
+  Shown exact = small;
+  exact.radius_scale = 1.0;
+  expect_correct(camera, targets, exact, watch(camera, targets, {exact}, 4, 3));
 }
 
 TEST_F(Identify, ConstantMarkersOfTwoTargetsAlikeAreNeverReported) {

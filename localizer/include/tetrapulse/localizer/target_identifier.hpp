@@ -41,6 +41,13 @@
 //
 // Of hypotheses tied in codes, the best geometry is weighed first: its rivals are
 // those within geometry_margin_px of it.
+// Unmodulated targets have nothing but geometry to name them, and four blobs of
+// two targets can fit a third pose within the residual bound. Their markers'
+// image sizes are evidence the residuals do not use: a hypothesis whose pose
+// would show its spheres larger than their blobs (the median over its measured
+// markers of blob radius / the sphere's predicted image radius below
+// min_size_ratio, counting markers predicted at least min_sized_radius_px) holds no
+// target.
 // Hypotheses need four tracks (three: below); tracks too far apart for one
 // target (judged from their blob sizes and the marker diameter) are never combined. At most
 // max_hypotheses are weighed a call, given to the targets with the fewest
@@ -94,6 +101,9 @@ struct IdentificationOptions {
   double min_geometry_evidence = 12.0;   // nats
   int min_geometry_frames = 3;
   double geometry_noise_floor_px = 0.05;
+  // Unmodulated targets: blob sizes against the pose's (see above).
+  double min_size_ratio = 0.75;
+  double min_sized_radius_px = 3.0;
   // Three tracks, a marker out of view (see above): frames it must hold.
   bool edge_identification = true;
   int min_edge_frames = 3;
@@ -160,6 +170,8 @@ class TargetIdentifier {
   void enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted);
   void score_codes(Hypothesis* h) const;
   bool geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const;
+  // Unmodulated targets: whether h's pose shows its markers no larger than their blobs allow.
+  bool sizes_agree(const std::vector<CandidateTrack>& tracks, const Hypothesis& h) const;
   double allowed_errors(int counted) const;
   bool has_binary_codes(size_t target) const;
   bool codes_accept(const Hypothesis& h) const;
