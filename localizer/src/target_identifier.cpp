@@ -7,12 +7,17 @@
 
 #include "identification_hypothesis.hpp"
 #include "tetrapulse/localizer/frequency_identifier.hpp"
+#include "tetrapulse/localizer/p3p.hpp"
 #include "tetrapulse/localizer/p4p.hpp"
 #include "tetrapulse/localizer/pose_refinement.hpp"
 
 namespace tetrapulse {
 
 namespace {
+
+// How far from a P3P root's marker 3 a fourth track may lie beyond its radius (px):
+// three noisy centres extrapolate the fourth by a few pixels.
+constexpr double kFourthMarkerTolerancePx = 8.0;
 
 int64_t gcd(int64_t a, int64_t b) { return b == 0 ? a : gcd(b, a % b); }
 
@@ -203,8 +208,19 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
         if (over || b == a || !near(a, b)) continue;
         for (int c : w.candidates[2]) {
           if (over || c == a || c == b || !near(a, c) || !near(b, c)) continue;
+          // Unmodulated: no codes narrow the fourth track; a P3P root of the first
+          // three must put marker 3 on it (else 16 tracks in reach give ~40 000
+          // combinations a target, and the budget names none).
+          std::array<Eigen::Vector2d, 4> fourth;
+          const int roots = coded_ ? 0 : predict_fourth(tracks, t, {a, b, c}, &fourth);
+          if (!coded_ && roots == 0) continue;
           for (int d : w.candidates[3]) {
             if (d == a || d == b || d == c || !near(a, d) || !near(b, d) || !near(c, d)) continue;
+            if (!coded_ && !std::any_of(fourth.begin(), fourth.begin() + roots, [&](const Eigen::Vector2d& px) {
+                  return (px - tracks[size_t(d)].pixel).norm() <= kFourthMarkerTolerancePx + tracks[size_t(d)].radius_px;
+                })) {
+              continue;
+            }
             if (hypotheses_.size() >= options_.max_hypotheses) {
               over = true;
               break;
@@ -266,6 +282,25 @@ bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypot
   if (!coded_ && !sizes_agree(tracks, *h)) return false;
   h->geometry_state = 1;
   return true;
+}
+
+int TargetIdentifier::predict_fourth(const std::vector<CandidateTrack>& tracks, size_t t, const std::array<int, 3>& three,
+                                     std::array<Eigen::Vector2d, 4>* fourth) const {
+  const Target& target = targets_.targets[t];
+  Bearing3 x;
+  Point3x3 X;
+  for (size_t m = 0; m < 3; ++m) {
+    if (!camera_.unproject(tracks[size_t(three[m])].pixel, &x[m])) return 0;
+    X[m] = target.markers[m].position_m;
+  }
+  PoseCandidates poses;
+  const int n = solve_p3p(options_.solver, x, X, &poses);
+  int found = 0;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d p = poses[size_t(k)].apply(target.markers[3].position_m);
+    if (p.z() > 0 && camera_.project(p, &(*fourth)[size_t(found)])) ++found;
+  }
+  return found;
 }
 
 bool TargetIdentifier::sizes_agree(const std::vector<CandidateTrack>& tracks, const Hypothesis& h) const {

@@ -109,7 +109,8 @@ void check_round_trip(const std::string& name, int64_t frames) {
     EXPECT_EQ(f.exposure_ns, s.frames.exposure_ns);
     auto img = d->load_image(i, RigDataset::ImageMode::kAsStored);
     ASSERT_TRUE(img) << img.error().what();
-    EXPECT_EQ(img->type(), s.sensor.bit_depth == 16 ? CV_16UC1 : CV_8UC1);
+    // A Bayer sensor's frames are demosaiced into colour; a grey one's are its depth.
+    EXPECT_EQ(img->type(), s.sensor.bayer ? CV_8UC3 : s.sensor.bit_depth == 16 ? CV_16UC1 : CV_8UC1);
   }
 
   // groundtruth.csv: the scene's pose of each target at mid-exposure, qw >= 0.

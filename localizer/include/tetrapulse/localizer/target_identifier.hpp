@@ -41,6 +41,10 @@
 //
 // Of hypotheses tied in codes, the best geometry is weighed first: its rivals are
 // those within geometry_margin_px of it.
+// Unmodulated targets' hypotheses are enumerated guided by geometry: tracks for
+// markers 0-2 (in reach of each other), then only a fourth track that a P3P root
+// of those three puts marker 3 on (within 8 px beyond its radius); without codes
+// to narrow them, 16 tracks in reach would give ~40 000 combinations a target.
 // Unmodulated targets have nothing but geometry to name them, and four blobs of
 // two targets can fit a third pose within the residual bound. Their markers'
 // image sizes are evidence the residuals do not use: a hypothesis whose pose
@@ -170,6 +174,10 @@ class TargetIdentifier {
   void enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted);
   void score_codes(Hypothesis* h) const;
   bool geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const;
+  // Unmodulated targets: where the P3P roots of tracks `three` as markers 0-2 of target t
+  // put marker 3 (pixels); how many roots put it in front of the camera.
+  int predict_fourth(const std::vector<CandidateTrack>& tracks, size_t t, const std::array<int, 3>& three,
+                     std::array<Eigen::Vector2d, 4>* fourth) const;
   // Unmodulated targets: whether h's pose shows its markers no larger than their blobs allow.
   bool sizes_agree(const std::vector<CandidateTrack>& tracks, const Hypothesis& h) const;
   double allowed_errors(int counted) const;
