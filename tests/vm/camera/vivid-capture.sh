@@ -7,11 +7,7 @@
 set -eu
 . /lib/tetrapulse/vm-lib.sh
 
-cap=
-for node in /sys/class/video4linux/video*; do
-  [ "$(cat "$node/name")" = "vivid-000-vid-cap" ] && cap=/dev/$(basename "$node")
-done
-[ -n "$cap" ] || fail "vivid loaded no video capture node"
+cap=$(v4l2_node vivid-000-vid-cap) || fail "vivid loaded no video capture node"
 echo "vivid capture node: $cap"
 
 work=/tmp/vivid

@@ -7,14 +7,8 @@
 set -eu
 . /lib/tetrapulse/vm-lib.sh
 
-node_of() {
-  for node in /sys/class/video4linux/video*; do
-    [ "$(cat "$node/name")" = "$1" ] && { echo "/dev/$(basename "$node")"; return 0; }
-  done
-  return 1
-}
-cap=$(node_of vivid-000-vid-cap) || fail "vivid loaded no video capture node"
-out=$(node_of vivid-000-vid-out) || fail "vivid loaded no video output node"
+cap=$(v4l2_node vivid-000-vid-cap) || fail "vivid loaded no video capture node"
+out=$(v4l2_node vivid-000-vid-out) || fail "vivid loaded no video output node"
 echo "vivid capture $cap, output $out"
 
 work=/tmp/vivid-loop

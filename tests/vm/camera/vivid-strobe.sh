@@ -13,14 +13,8 @@
 set -eu
 . /lib/tetrapulse/vm-lib.sh
 
-node_of() {
-  for node in /sys/class/video4linux/video*; do
-    [ "$(cat "$node/name")" = "$1" ] && { echo "/dev/$(basename "$node")"; return 0; }
-  done
-  return 1
-}
-cap=$(node_of vivid-000-vid-cap) || fail "vivid loaded no video capture node"
-meta=$(node_of vivid-000-meta-cap) || fail "vivid loaded no metadata capture node"
+cap=$(v4l2_node vivid-000-vid-cap) || fail "vivid loaded no video capture node"
+meta=$(v4l2_node vivid-000-meta-cap) || fail "vivid loaded no metadata capture node"
 chip=$(gpio_sim_chip camera strobe) || fail "cannot create a gpio-sim chip"
 line_dir=$(gpio_sim_line_dir camera 0)
 echo "vivid capture $cap, metadata $meta, strobe on $chip:0"

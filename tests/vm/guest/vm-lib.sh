@@ -19,6 +19,15 @@ wait_for() {
   done
 }
 
+# v4l2_node NAME: prints /dev/videoN of the V4L2 node whose sysfs name is NAME
+# (vivid: vivid-000-vid-cap, vivid-000-vid-out, vivid-000-meta-cap); fails when none is.
+v4l2_node() {
+  for v4l2_dir in /sys/class/video4linux/video*; do
+    [ "$(cat "$v4l2_dir/name" 2>/dev/null)" = "$1" ] && { echo "/dev/$(basename "$v4l2_dir")"; return 0; }
+  done
+  return 1
+}
+
 # gpio_sim_chip NAME LINE_NAME...: a live gpio-sim chip with one bank, one line
 # per name. Prints the chip's gpiochipN name. Its sysfs lines are
 # /sys/devices/platform/<dev_name>/<gpiochipN>/sim_gpio<K>/{value,pull}.

@@ -95,33 +95,30 @@ inline void set_menu(int fd, const std::string& device, const std::string& name,
   die(device + ": control \"" + name + "\" has no item \"" + item + "\"");
 }
 
-// Selects the first input whose name starts with `prefix`.
-inline void select_input(int fd, const std::string& device, const std::string& prefix) {
+// Selects the first input (v4l2_input, VIDIOC_ENUMINPUT / VIDIOC_S_INPUT) or output
+// (v4l2_output, VIDIOC_ENUMOUTPUT / VIDIOC_S_OUTPUT) whose name starts with `prefix`.
+template <typename Port>
+void select_port(int fd, const std::string& device, const std::string& prefix, unsigned long enumerate,
+                 unsigned long select, const char* what) {
   for (uint32_t i = 0;; ++i) {
-    v4l2_input in{};
-    in.index = i;
-    if (xioctl(fd, VIDIOC_ENUMINPUT, &in) < 0) break;
-    if (std::string(reinterpret_cast<const char*>(in.name)).rfind(prefix, 0) == 0) {
+    Port port{};
+    port.index = i;
+    if (xioctl(fd, enumerate, &port) < 0) break;
+    if (std::string(reinterpret_cast<const char*>(port.name)).rfind(prefix, 0) == 0) {
       int index = static_cast<int>(i);
-      must(fd, VIDIOC_S_INPUT, &index, device, "VIDIOC_S_INPUT");
+      must(fd, select, &index, device, what);
       return;
     }
   }
-  die(device + ": no input named " + prefix + "...");
+  die(device + ": no " + (enumerate == VIDIOC_ENUMINPUT ? "input" : "output") + " named " + prefix + "...");
+}
+
+inline void select_input(int fd, const std::string& device, const std::string& prefix) {
+  select_port<v4l2_input>(fd, device, prefix, VIDIOC_ENUMINPUT, VIDIOC_S_INPUT, "VIDIOC_S_INPUT");
 }
 
 inline void select_output(int fd, const std::string& device, const std::string& prefix) {
-  for (uint32_t i = 0;; ++i) {
-    v4l2_output out{};
-    out.index = i;
-    if (xioctl(fd, VIDIOC_ENUMOUTPUT, &out) < 0) break;
-    if (std::string(reinterpret_cast<const char*>(out.name)).rfind(prefix, 0) == 0) {
-      int index = static_cast<int>(i);
-      must(fd, VIDIOC_S_OUTPUT, &index, device, "VIDIOC_S_OUTPUT");
-      return;
-    }
-  }
-  die(device + ": no output named " + prefix + "...");
+  select_port<v4l2_output>(fd, device, prefix, VIDIOC_ENUMOUTPUT, VIDIOC_S_OUTPUT, "VIDIOC_S_OUTPUT");
 }
 
 inline std::string fourcc_text(uint32_t f) {
