@@ -32,11 +32,12 @@ class BackgroundFlattening {
   bool flattened() const { return flattened_; }
 
  private:
-  static constexpr int kFineCell = 16, kCoarseCell = 64;
+  static constexpr int kFineCell = 16, kCoarseCell = 64, kPercentileStep = 8;
   // The levels of `cell`-sized cells of `work`, one more extrapolated on every
-  // side (padded_, CV_32F); then the map at every pixel of `work` (CV_32F).
+  // side (padded_, CV_32F); then the map (CV_32F) at the centre of every
+  // step x step block of `work` (step 1: at every pixel).
   void cell_levels(const cv::Mat& work, int cell);
-  void upsample(const cv::Mat& work, int cell, cv::Mat* out);
+  void upsample(const cv::Mat& work, int cell, int step, cv::Mat* out);
 
   cv::Mat cells_, padded_, scaled_, coarse_, fine_, out_;
   std::vector<int> values_;
