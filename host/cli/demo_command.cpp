@@ -1,5 +1,5 @@
-// tetrapulse demo: the virtual rig end to end. Simulates paper-exp1 and swarm,
-// localizes them, evaluates against ground truth, prints the accuracy table and
+// tetrapulse demo: the virtual rig end to end. Simulates paper-exp1 and swarm
+// (or the scenarios given with --scenario: built-in names or YAML files), localizes them, evaluates against ground truth, prints the accuracy table and
 // writes a trajectory plot, an annotated frame strip and an overlay video (every
 // frame, measured and true poses drawn) per scenario.
 #include <chrono>
@@ -37,6 +37,7 @@ namespace fs = std::filesystem;
 
 struct DemoArgs {
   std::string out = "out/demo";
+  std::vector<std::string> scenarios;  // empty: kDemoScenarios
   double seconds = 8;
   bool quiet = false;
 };
@@ -172,15 +173,18 @@ DatasetResult<void> write_png(const std::string& path, const cv::Mat& image) {
 struct ScenarioOutcome {
   Evaluation evaluation;
   std::string folder;
+  std::string name;  // the scenario's
   size_t frames = 0;
   size_t skipped = 0;
   bool stopped = false;  // by a signal, while localizing: nothing evaluated or drawn
 };
 
 // One scenario: simulate, localize, evaluate, draw. Errors name the file at fault.
-DatasetResult<ScenarioOutcome> run_scenario(const std::string& name, const DemoArgs& a, const DemoSimulation& simulate) {
-  auto scenario = sim::load_scenario(name);
+DatasetResult<ScenarioOutcome> run_scenario(const std::string& name_or_path, const DemoArgs& a,
+                                            const DemoSimulation& simulate) {
+  auto scenario = sim::load_scenario(name_or_path);
   if (!scenario) return tl::unexpected(scenario.error());
+  const std::string name = scenario->name.empty() ? fs::path(name_or_path).stem().string() : scenario->name;
   const std::string folder = (fs::path(a.out) / name).string();
   const std::string data = (fs::path(folder) / "dataset").string();
   std::error_code ec;
@@ -213,15 +217,20 @@ DatasetResult<ScenarioOutcome> run_scenario(const std::string& name, const DemoA
   auto strip = overlay_strip(*dataset, *localized);
   if (!strip) return tl::unexpected(strip.error());
   if (auto r = write_png((fs::path(folder) / "overlay.png").string(), *strip); !r) return tl::unexpected(r.error());
-  return ScenarioOutcome{*evaluation, folder, dataset->frames().size(), localized->skipped, false};
+  return ScenarioOutcome{*evaluation, folder, name, dataset->frames().size(), localized->skipped, false};
 }
 
 int run_demo(const DemoArgs& a, const DemoSimulation& simulate) {
   const auto start = std::chrono::steady_clock::now();
   std::string markdown = evaluation_markdown_header();
   size_t skipped = 0;
-  for (const char* name : kDemoScenarios) {
-    auto outcome = run_scenario(name, a, simulate);
+  std::vector<std::string> names = a.scenarios;
+  if (names.empty()) names.assign(std::begin(kDemoScenarios), std::end(kDemoScenarios));
+  // Every scenario is read before the first is simulated: a typo costs no minutes.
+  for (const std::string& n : names)
+    if (auto s = sim::load_scenario(n); !s) return fail(kExitUsage, s.error().what());
+  for (const std::string& n : names) {
+    auto outcome = run_scenario(n, a, simulate);
     if (!outcome) return fail(kExitFailure, outcome.error().what());
     if (outcome->stopped) {
       return fail(kExitFailure, fmt::format("stopped by a signal; {}/poses.csv has the frames localized so far",
@@ -229,9 +238,9 @@ int run_demo(const DemoArgs& a, const DemoSimulation& simulate) {
     }
     skipped += outcome->skipped;
     const Evaluation& e = outcome->evaluation;
-    fmt::print("{}\n", evaluation_table(e, fmt::format("{} ({} frames)", name, outcome->frames)));
+    fmt::print("{}\n", evaluation_table(e, fmt::format("{} ({} frames)", outcome->name, outcome->frames)));
     fmt::print("  wrote {0}/poses.csv, {0}/trajectory.png, {0}/overlay.png, {0}/overlay.avi\n\n", outcome->folder);
-    markdown += evaluation_markdown_row(e, name);
+    markdown += evaluation_markdown_row(e, outcome->name);
   }
   const std::string table = (fs::path(a.out) / "accuracy.md").string();
   if (auto r = write_text_file(table, markdown); !r) return fail(kExitFailure, r.error().what());
@@ -250,8 +259,12 @@ void add_demo_command(CLI::App& app, int* result) {
   cmd->add_option("--seconds", args->seconds, "Seconds of each scenario to simulate")
       ->check(CLI::Range(0.1, 600.0))
       ->capture_default_str();
+  cmd->add_option("--scenario", args->scenarios,
+                  "Scenario to run instead of paper-exp1 and swarm (repeatable): a built-in name (tetrapulse sim "
+                  "--list) or a scenario YAML file");
   cmd->add_flag("--quiet", args->quiet, "No progress messages");
-  cmd->footer("Scenarios: paper-exp1 and swarm (tetrapulse sim --list). Errors in mm and degrees.");
+  cmd->footer("Scenarios: paper-exp1 and swarm unless --scenario is given (tetrapulse sim --list). Errors in mm and "
+              "degrees.");
   cmd->callback([args, result] { *result = run_demo(*args, virtual_rig_simulation()); });
 }
 

@@ -21,18 +21,25 @@ cv::Point rounded(const cv::Point2d& p) { return cv::Point(cvRound(p.x), cvRound
 
 }  // namespace
 
-cv::Mat overlay_frame(const cv::Mat& grey, const CameraModel& camera, const std::vector<OverlayPose>& measured,
+cv::Mat overlay_frame(const cv::Mat& frame, const CameraModel& camera, const std::vector<OverlayPose>& measured,
                       const std::vector<OverlayPose>& truth, const std::string& caption) {
   cv::Mat eight, out;
-  if (grey.depth() == CV_16U) {
-    grey.convertTo(eight, CV_8U, 1.0 / 256);
+  if (frame.depth() == CV_16U) {
+    frame.convertTo(eight, CV_8U, 1.0 / 256);
   } else {
-    eight = grey;
+    eight = frame;
   }
-  // Brightened so that the dark scene shows.
+  // A dark scene (LEDs in a dim room) is brightened so that it shows; a lit one
+  // (painted markers on a floor) is not, or the floor would clip.
   cv::Mat lifted;
-  eight.convertTo(lifted, CV_8U, 2.0, 10);
-  cv::cvtColor(lifted, out, cv::COLOR_GRAY2BGR);
+  const cv::Scalar mean = cv::mean(eight);
+  const bool dark = (mean[0] + mean[1] + mean[2] + mean[3]) / eight.channels() < 64;
+  eight.convertTo(lifted, CV_8U, dark ? 2.0 : 1.0, dark ? 10 : 0);
+  if (lifted.channels() == 3) {
+    out = lifted;
+  } else {
+    cv::cvtColor(lifted, out, cv::COLOR_GRAY2BGR);
+  }
   for (const OverlayPose& t : truth) {
     for (const Marker& m : t.target->markers) {
       cv::Point2d px;

@@ -19,9 +19,9 @@ struct OverlayPose {
   Pose pose;
 };
 
-// A colour copy of `grey` (8- or 16-bit) with `measured` and `truth` drawn over it
-// and `caption` in its top-left corner.
-cv::Mat overlay_frame(const cv::Mat& grey, const CameraModel& camera, const std::vector<OverlayPose>& measured,
+// A colour copy of `frame` (grey 8- or 16-bit, or 8-bit BGR; brightened when dark)
+// with `measured` and `truth` drawn over it and `caption` in its top-left corner.
+cv::Mat overlay_frame(const cv::Mat& frame, const CameraModel& camera, const std::vector<OverlayPose>& measured,
                       const std::vector<OverlayPose>& truth, const std::string& caption);
 
 // Tiles (all the same size) in rows of `columns`, each scaled by `scale`.

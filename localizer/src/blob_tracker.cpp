@@ -145,6 +145,7 @@ void BlobTracker::update(const ExposureStamp& frame, const BlobExtraction& extra
         gate = std::max(g.radius, 0.0);
       }
     for (int c = 0; c < blobs; ++c) {
+      if (extraction.blobs[size_t(c)].look != track.last_blob().look) continue;  // a dark ball never continues an LED
       const double d2 = (extraction.blobs[size_t(c)].centroid - predicted).squaredNorm();
       if (d2 <= gate * gate) cost_[size_t(r) * cols + c] = d2;
     }

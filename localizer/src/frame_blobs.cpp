@@ -21,8 +21,12 @@ int search_burst_frames(const TargetsFile& targets, int64_t frame_period_ns, int
   return std::min(frames, 16);
 }
 
-FrameBlobs::FrameBlobs(const BlobExtractorConfig& config, int full_search_interval)
-    : extractor_(config), full_search_interval_(full_search_interval) {}
+FrameBlobs::FrameBlobs(const RigLooks& looks, int full_search_interval)
+    : expected_(looks.configs.size(), 0), full_search_interval_(full_search_interval) {
+  for (const BlobExtractorConfig& c : looks.configs) extractors_.emplace_back(c);
+  for (const auto& of : looks.look_of)
+    for (const int l : of) ++expected_[size_t(l)];
+}
 
 void FrameBlobs::set_search_burst(int frames) {
   burst_ = frames;
@@ -30,11 +34,11 @@ void FrameBlobs::set_search_burst(int frames) {
 }
 
 tl::expected<void, BlobInputError> FrameBlobs::extract(const cv::Mat& image, const RoiPlan& plan, bool needs_search,
-                                                       int expected_whole, bool prune_whole) {
+                                                       bool prune_whole) {
   const bool first = frames_++ == 0;
   hits_.clear();
   searched_ = false;
-  if (auto r = extractor_.extract(image, plan.rois, &extraction_); !r) return r;
+  if (auto r = extract_rois(image, plan); !r) return r;
   patch_absent_rois(plan);
   for (size_t i = 0; i < extraction_.rois.size(); ++i) {
     const RoiMeasurement& m = extraction_.rois[i];
@@ -43,8 +47,51 @@ tl::expected<void, BlobInputError> FrameBlobs::extract(const cv::Mat& image, con
     extraction_.blobs.push_back(m.blob);
   }
   if (!search_now(first, needs_search)) return {};
-  if (auto r = extractor_.extract(image, expected_whole, &whole_, prune_whole); !r) return r;
+  if (auto r = extract_whole(image, prune_whole); !r) return r;
   add_whole_image_blobs(plan);
+  return {};
+}
+
+namespace {
+
+void append_look(const BlobExtraction& part, int look, BlobExtraction* out) {
+  for (const Blob& b : part.blobs) {
+    out->blobs.push_back(b);
+    out->blobs.back().look = look;
+  }
+  out->rejected.insert(out->rejected.end(), part.rejected.begin(), part.rejected.end());
+  out->windows.insert(out->windows.end(), part.windows.begin(), part.windows.end());
+}
+
+}  // namespace
+
+tl::expected<void, BlobInputError> FrameBlobs::extract_rois(const cv::Mat& image, const RoiPlan& plan) {
+  if (extractors_.size() == 1) return extractors_[0].extract(image, plan.rois, &extraction_);
+  extraction_.clear();
+  extraction_.rois.resize(plan.rois.size());
+  for (size_t l = 0; l < extractors_.size(); ++l) {
+    look_rois_.clear();
+    look_index_.clear();
+    for (size_t i = 0; i < plan.rois.size(); ++i)
+      if (plan.purposes[i].look == int(l)) look_rois_.push_back(plan.rois[i]), look_index_.push_back(i);
+    if (look_rois_.empty()) continue;
+    if (auto r = extractors_[l].extract(image, look_rois_, &part_); !r) return r;
+    for (size_t j = 0; j < look_index_.size(); ++j) {
+      extraction_.rois[look_index_[j]] = part_.rois[j];
+      extraction_.rois[look_index_[j]].blob.look = int(l);
+    }
+    append_look(part_, int(l), &extraction_);
+  }
+  return {};
+}
+
+tl::expected<void, BlobInputError> FrameBlobs::extract_whole(const cv::Mat& image, bool prune_whole) {
+  if (extractors_.size() == 1) return extractors_[0].extract(image, expected_[0], &whole_, prune_whole);
+  whole_.clear();
+  for (size_t l = 0; l < extractors_.size(); ++l) {
+    if (auto r = extractors_[l].extract(image, expected_[l], &part_, prune_whole); !r) return r;
+    append_look(part_, int(l), &whole_);
+  }
   return {};
 }
 
@@ -56,6 +103,7 @@ void FrameBlobs::patch_absent_rois(const RoiPlan& plan) {
     int nearest = -1;
     double nearest_d = 2 * roi.radius;
     for (size_t b = 0; b < extraction_.blobs.size(); ++b) {
+      if (extraction_.blobs[b].look != plan.purposes[i].look) continue;
       const double d = (extraction_.blobs[b].centroid - roi.center).norm();
       if (d < nearest_d) nearest_d = d, nearest = int(b);
     }
@@ -63,7 +111,7 @@ void FrameBlobs::patch_absent_rois(const RoiPlan& plan) {
     const Eigen::Vector2d& p = extraction_.blobs[size_t(nearest)].centroid;
     bool closer = false;
     for (size_t j = 0; j < plan.rois.size() && !closer; ++j)
-      closer = j != i && (p - plan.rois[j].center).norm() < nearest_d;
+      closer = j != i && plan.purposes[j].look == plan.purposes[i].look && (p - plan.rois[j].center).norm() < nearest_d;
     if (closer) continue;
     m.status = RoiStatus::kDetected;
     m.blob = extraction_.blobs[size_t(nearest)];
@@ -91,10 +139,12 @@ void FrameBlobs::add_whole_image_blobs(const RoiPlan& plan) {
   for (const Blob& b : whole_.blobs) {
     bool known = false;
     for (size_t i = 0; i < plan.rois.size() && !known; ++i) {
+      if (plan.purposes[i].look != b.look) continue;
       const Eigen::Vector2d d = b.centroid - plan.rois[i].center;
       known = std::abs(d.x()) <= plan.rois[i].radius + 1 && std::abs(d.y()) <= plan.rois[i].radius + 1;
     }
-    for (size_t i = 0; i < found_in_rois && !known; ++i) known = (b.centroid - extraction_.blobs[i].centroid).norm() < 3;
+    for (size_t i = 0; i < found_in_rois && !known; ++i)
+      known = extraction_.blobs[i].look == b.look && (b.centroid - extraction_.blobs[i].centroid).norm() < 3;
     if (!known) extraction_.blobs.push_back(b);
   }
 }

@@ -12,7 +12,11 @@
 //      as many consecutive frames as an on-off marker may stay dark (so every
 //      lit marker shows in one of them, whatever its code), every
 //      full_search_interval frames, and on the first frame. Its blobs that no ROI
-//      square holds and no ROI blob lies within 3 px of are new blobs too.
+//      square of their look holds and no ROI blob of it lies within 3 px of are
+//      new blobs too.
+// A rig that mixes looks (target_appearance.hpp) has one extractor per look:
+// each ROI goes through its look's, the whole image through every one, and each
+// blob carries its look.
 // Pixels in the OpenCV convention.
 #include <cstddef>
 #include <vector>
@@ -22,6 +26,7 @@
 
 #include "roi_planner.hpp"
 #include "tetrapulse/localizer/blob_extractor.hpp"
+#include "tetrapulse/localizer/target_appearance.hpp"
 
 namespace tetrapulse::localizer_internal {
 
@@ -41,17 +46,17 @@ struct SearchHit {
 
 class FrameBlobs {
  public:
-  FrameBlobs(const BlobExtractorConfig& config, int full_search_interval);
+  FrameBlobs(const RigLooks& looks, int full_search_interval);
 
   // Frames a whole-image search lasts (search_burst_frames); known from the second frame on.
   void set_search_burst(int frames);
 
-  // `needs_search`: some target or marker is not tracked; `expected_whole`: markers the
-  // whole image may hold, recovered when fewer are found; pruned to that number
-  // when more are found only with `prune_whole` (not for coded markers, whose
-  // codes tell clutter apart, and some of which may be dark).
+  // `needs_search`: some target or marker is not tracked. The whole image's
+  // blobs of a look are recovered when fewer are found than the rig has markers of
+  // it, and pruned to that number when more are found only with `prune_whole` (not
+  // for coded markers, whose codes tell clutter apart, and some of which may be dark).
   tl::expected<void, BlobInputError> extract(const cv::Mat& image, const RoiPlan& plan, bool needs_search,
-                                             int expected_whole, bool prune_whole);
+                                             bool prune_whole);
 
   // The ROIs' measurements (one per plan ROI, in order) and the new blobs.
   const BlobExtraction& extraction() const { return extraction_; }
@@ -61,13 +66,18 @@ class FrameBlobs {
   const std::vector<SearchHit>& search_hits() const { return hits_; }
 
  private:
+  tl::expected<void, BlobInputError> extract_rois(const cv::Mat& image, const RoiPlan& plan);
+  tl::expected<void, BlobInputError> extract_whole(const cv::Mat& image, bool prune_whole);
   void patch_absent_rois(const RoiPlan& plan);
   bool search_now(bool first, bool needs_search);
   void add_whole_image_blobs(const RoiPlan& plan);
 
-  BlobExtractor extractor_;
+  std::vector<BlobExtractor> extractors_;  // one per look
+  std::vector<int> expected_;              // the rig's markers of each look
   int full_search_interval_;
-  BlobExtraction extraction_, whole_;
+  BlobExtraction extraction_, whole_, part_;
+  std::vector<BlobRoi> look_rois_;
+  std::vector<size_t> look_index_;
   std::vector<SearchHit> hits_;
   int64_t frames_ = 0;
   int frames_since_search_ = 0;

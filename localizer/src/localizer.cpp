@@ -60,8 +60,10 @@ struct Localizer::State {
         rig(rig_codes(targets)),
         frequency_coded(any_frequency_code(rig)),
         roster(camera, targets, options.prediction, options.min_roi_radius_px),
-        appearance(blobs_for_targets(options.blobs, targets)),
-        blobs(appearance.value_or(options.blobs), options.full_search_interval),
+        looks(rig_looks(options.blobs, targets)),
+        colour(std::any_of(looks.configs.begin(), looks.configs.end(),
+                           [](const BlobExtractorConfig& c) { return c.colour.has_value(); })),
+        blobs(looks, options.full_search_interval),
         reading(targets, options.bits, options.frequency,
                 std::max(options.identification.max_samples, options.verify_samples), frequency_coded),
         checks(targets, frequency_code_of(targets, rig), check_options(options)),
@@ -81,8 +83,9 @@ struct Localizer::State {
   bool frequency_coded;      // some marker plays a frequency code
   TargetRoster roster;
   RoiPlan plan;
-  // How the markers look, from targets.yaml; an error (mixed looks) refuses every frame.
-  tl::expected<BlobExtractorConfig, std::string> appearance;
+  // How the markers look, from targets.yaml: one extractor per look.
+  RigLooks looks;
+  bool colour;  // some look is a colour: frames must be in colour
   FrameBlobs blobs;
   BlobTracker tracker;
   CodeReading reading;
@@ -98,8 +101,7 @@ struct Localizer::State {
 
 tl::expected<void, LocalizerError> Localizer::State::check_frame(const cv::Mat& image, int64_t start,
                                                                 int64_t exposure) const {
-  if (!appearance) return tl::unexpected(LocalizerError{"targets.yaml: " + appearance.error()});
-  if (appearance->colour && (image.channels() != 3 || image.depth() != CV_8U)) {
+  if (colour && (image.channels() != 3 || image.depth() != CV_8U)) {
     return tl::unexpected(LocalizerError{"targets.yaml gives the markers a colour: frames must be 8-bit colour"});
   }
   if (image.cols != camera.width() || image.rows != camera.height()) {
@@ -134,8 +136,7 @@ tl::expected<std::vector<TargetPose>, LocalizerError> Localizer::State::process(
   plan_rois(roster, tracker, camera, mid, frame_period_ns, options.min_roi_radius_px, &plan);
   // 2. Blobs, with the whole image searched while something is not tracked.
   const bool coded = targets.modulation.kind != ModulationKind::kConstant;
-  const int expected_whole = int(4 * targets.targets.size());
-  if (auto r = blobs.extract(image, plan, roster.needs_search(), expected_whole, !coded); !r)
+  if (auto r = blobs.extract(image, plan, roster.needs_search(), !coded); !r)
     return tl::unexpected(LocalizerError{r.error().message});
   // 3. Tracks, and the new ones that become markers of identified targets.
   tracker.update(stamp, blobs.extraction(), plan.gates);

@@ -26,7 +26,9 @@ void claim_new_tracks(const BlobTracker& tracker, const std::vector<SearchHit>& 
       int64_t found = -1;
       int count = 0;
       for (const BlobTrack& track : tracker.tracks())
-        if (newborn(track) && (track.position() - px).norm() <= gate && !r.owner(track.id())) found = track.id(), ++count;
+        if (newborn(track) && track.last_blob().look == r.look_of(t, m) && (track.position() - px).norm() <= gate &&
+            !r.owner(track.id()))
+          found = track.id(), ++count;
       if (count == 1) tt.assign(m, found);
     }
   }

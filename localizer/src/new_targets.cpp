@@ -24,6 +24,7 @@ std::vector<size_t> NewTargets::identify(const BlobTracker& tracker, CodeReading
     c.pixel = seen ? newest.centroid : track.predict(stamp.middle_ns());
     c.measured = seen && !newest.merged;
     c.radius_px = track.last_blob().radius;
+    c.look = track.last_blob().look;
     if (frequency_coded_) c.frequency_code = reading.frequency_code(track.id());
     candidates_.push_back(c);
   }

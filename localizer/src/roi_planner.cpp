@@ -44,7 +44,7 @@ void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const Cam
       }
     }
     plan->rois.push_back(roi);
-    plan->purposes.push_back(RoiPurpose{track.id(), std::nullopt});
+    plan->purposes.push_back(RoiPurpose{track.id(), std::nullopt, track.last_blob().look});
   }
   for (size_t t = 0; t < roster.size(); ++t) {
     const TrackedTarget& tt = roster[t];
@@ -61,7 +61,7 @@ void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const Cam
       roi.radius = roster.roi_radius(t, mid_ns, frame_period_ns) + 2;
       roi.aperture_radius = std::max(3.0, radius + 2.5);
       plan->rois.push_back(roi);
-      plan->purposes.push_back(RoiPurpose{-1, MarkerRef{t, m}});
+      plan->purposes.push_back(RoiPurpose{-1, MarkerRef{t, m}, roster.look_of(t, m)});
     }
   }
 }

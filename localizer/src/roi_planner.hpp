@@ -27,6 +27,7 @@ inline constexpr int kMaxHintFrames = 2;
 struct RoiPurpose {
   int64_t track_id = -1;            // the track whose ROI this is, or -1 for a search
   std::optional<MarkerRef> search;  // the marker a search ROI looks for
+  int look = 0;                     // the look (Blob::look) of the track or of the marker searched for
 };
 
 struct RoiPlan {

@@ -8,6 +8,7 @@
 #include "identification_hypothesis.hpp"
 #include "tetrapulse/localizer/frequency_identifier.hpp"
 #include "tetrapulse/localizer/p3p.hpp"
+#include "tetrapulse/localizer/target_appearance.hpp"
 #include "tetrapulse/localizer/p4p.hpp"
 #include "tetrapulse/localizer/pose_refinement.hpp"
 
@@ -29,6 +30,7 @@ TargetIdentifier::TargetIdentifier(const CameraModel& camera, const TargetsFile&
   coded_ = targets.modulation.kind != ModulationKind::kConstant;
   free_running_ = coded_ && !targets.timebase.synchronized;
   frequency_of_ = frequency_code_of(targets, rig_codes(targets));
+  look_of_ = rig_looks(BlobExtractorConfig{}, targets).look_of;
   for (size_t ti = 0; ti < targets.targets.size(); ++ti) {
     const Target& t = targets.targets[ti];
     std::array<int, 4> of{-1, -1, -1, -1};
@@ -149,6 +151,7 @@ void TargetIdentifier::score_codes(Hypothesis* h) const {
 }
 
 bool TargetIdentifier::may_be(const CandidateTrack& track, size_t i, size_t t, size_t m) const {
+  if (track.look != look_of_[t][m]) return false;
   // A frequency code's marker takes exactly its tracks; a binary one none of them.
   const int frequency = frequency_of_[t][m];
   if (frequency >= 0 ? track.frequency_code != frequency : track.frequency_code >= 0) return false;

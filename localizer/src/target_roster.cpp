@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "tetrapulse/localizer/target_appearance.hpp"
+
 namespace tetrapulse::localizer_internal {
 
 void TrackedTarget::identify(const std::array<int64_t, 4>& tracks, const CodeClock& code_clock, const Pose& pose,
@@ -34,7 +36,11 @@ void TrackedTarget::forget() {
 
 TargetRoster::TargetRoster(const CameraModel& camera, const TargetsFile& targets, const PredictionOptions& prediction,
                            double min_roi_radius_px)
-    : camera_(camera), targets_(targets), min_roi_radius_px_(min_roi_radius_px), tracked_(targets.targets.size()) {
+    : camera_(camera),
+      targets_(targets),
+      min_roi_radius_px_(min_roi_radius_px),
+      tracked_(targets.targets.size()),
+      looks_(rig_looks(BlobExtractorConfig{}, targets).look_of) {
   for (TrackedTarget& t : tracked_) t.predictor = PosePredictor(prediction);
 }
 

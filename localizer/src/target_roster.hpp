@@ -89,6 +89,8 @@ class TargetRoster {
   std::optional<MarkerRef> owner(int64_t track_id) const;
   // Some target is not identified, or some marker of an identified one has no track.
   bool needs_search() const;
+  // The look of marker `m` of target `t` (Blob::look, RigLooks::look_of).
+  int look_of(size_t t, int m) const { return looks_[t][size_t(m)]; }
 
   // Where the predicted pose puts marker `m` of target `t` (false without a
   // prediction, or behind the camera); its image radius when `radius_px` is given.
@@ -103,6 +105,7 @@ class TargetRoster {
   const TargetsFile& targets_;
   double min_roi_radius_px_;
   std::vector<TrackedTarget> tracked_;  // one per TargetsFile::targets entry
+  std::vector<std::array<int, 4>> looks_;
 };
 
 }  // namespace tetrapulse::localizer_internal

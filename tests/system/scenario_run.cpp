@@ -1,8 +1,8 @@
 #include "scenario_run.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 
 #include <opencv2/calib3d.hpp>
@@ -173,19 +173,28 @@ tl::expected<ScenarioRun, std::string> run_scenario(const sim::Scenario& scenari
 
   // The oracle, frame by frame.
   const CameraModel camera(dataset->camera());
-  // The extractor the localizer uses for these targets (dark or coloured markers).
-  auto blob_config = blobs_for_targets(BlobExtractorConfig{}, dataset->targets());
-  if (!blob_config) return tl::unexpected(blob_config.error());
-  BlobExtractor extractor(*blob_config);
-  BlobExtraction extraction;
+  // The extractors the localizer uses for these targets (one per look: light, dark, a colour).
+  const RigLooks looks = rig_looks(BlobExtractorConfig{}, dataset->targets());
+  std::vector<BlobExtractor> extractors(looks.configs.begin(), looks.configs.end());
+  std::vector<BlobExtraction> extractions(extractors.size());
+  std::vector<Blob> blobs;
   for (size_t i = 0; i < run.frames.size(); ++i) {
     auto image = dataset->load_image(i);
     if (!image) return tl::unexpected(image.error().what());
-    if (auto r = extractor.extract(*image, 0, &extraction); !r) return tl::unexpected(r.error().message);
-    for (const Target& target : dataset->targets().targets) {
-      const auto it = truth.find({run.frames[i].frame, target.id});
+    for (size_t l = 0; l < extractors.size(); ++l)
+      if (auto r = extractors[l].extract(*image, 0, &extractions[l]); !r) return tl::unexpected(r.error().message);
+    const auto& targets = dataset->targets().targets;
+    for (size_t t = 0; t < targets.size(); ++t) {
+      const auto it = truth.find({run.frames[i].frame, targets[t].id});
       if (it == truth.end()) continue;
-      if (const auto pose = oracle_pose(camera, target, it->second, extraction.blobs)) {
+      // The blobs of the looks this target's markers have.
+      blobs.clear();
+      for (size_t l = 0; l < extractors.size(); ++l) {
+        const auto& of = looks.look_of[t];
+        if (std::find(of.begin(), of.end(), int(l)) == of.end()) continue;
+        blobs.insert(blobs.end(), extractions[l].blobs.begin(), extractions[l].blobs.end());
+      }
+      if (const auto pose = oracle_pose(camera, targets[t], it->second, blobs)) {
         run.oracle_errors[it->first] = errors_of(*pose, it->second);
       }
     }

@@ -54,6 +54,9 @@ struct Blob {
   bool merged = false;
   int merge_group = 0;  // merged: parts of one blob share this number (unique within a frame's extraction)
   int merge_parts = 0;  // merged: how many parts that blob was split into
+  // Which of the rig's looks (RigLooks, target_appearance.hpp) found it: 0 unless
+  // the rig mixes light, dark or coloured markers.
+  int look = 0;
   BlobOrigin origin = BlobOrigin::kThreshold;
 };
 

@@ -13,6 +13,8 @@
 //             a binary code never takes such a track (the two families are
 //             never confused). A target whose markers all play frequency codes
 //             needs no read bits; geometry then names its markers.
+//   look      a marker takes only tracks of its own look (light, dark, a colour:
+//             target_appearance.hpp) in a rig that mixes them.
 //   geometry  the tracks' pixels this frame must be explained by one pose of the
 //             target: known-correspondence P4P (p4p.hpp), refined, with an RMS
 //             reprojection error of at most max_rms_px. At least three of the
@@ -121,6 +123,7 @@ struct CandidateTrack {
   double radius_px = 0;                                // blob radius, for the size of its target
   bool measured = true;     // `pixel` is an unmerged blob of this frame (not a prediction, not a split part)
   int frequency_code = -1;  // rig_codes() index of the frequency code this track carries (-1: none decided)
+  int look = 0;             // its blobs' look (Blob::look): only markers of that look take it
 };
 
 struct Identification {
@@ -199,6 +202,7 @@ class TargetIdentifier {
   std::vector<Code> codes_;                       // distinct codes
   std::vector<std::array<int, 4>> code_of_;      // code index of each target's markers (-1: none)
   std::vector<std::array<int, 4>> frequency_of_; // rig_codes() index of a marker's frequency code (-1: binary or none)
+  std::vector<std::array<int, 4>> look_of_;      // each marker's look (RigLooks::look_of)
   std::vector<double> extent_ratio_;             // target's largest marker distance / marker radius
   std::vector<TrackCodes> track_codes_;
   std::vector<Hypothesis> hypotheses_;
