@@ -9,6 +9,7 @@ namespace tetrapulse::blob_internal {
 namespace {
 
 constexpr int kMaxBins = 4096;
+constexpr int kRowStepArea = 1 << 16;  // 8-bit windows this large count every other row
 
 int bit_length(unsigned v) {
   int n = 0;
@@ -34,7 +35,11 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
     partial_.resize(4 * 256);
     uint32_t* h = partial_.data();
     std::memset(h, 0, partial_.size() * sizeof(uint32_t));
-    for (int y = window.y; y < window.y + window.height; ++y) {
+    // A whole image's statistics need no more than every other row (180 000
+    // pixels of 752 x 480): its count was a fifth of a full-frame search.
+    const int step = window.area() >= kRowStepArea ? 2 : 1;
+    total_ = static_cast<uint32_t>(((window.height + step - 1) / step) * std::max(0, window.width));
+    for (int y = window.y; y < window.y + window.height; y += step) {
       const uint8_t* p = image.ptr<uint8_t>(y) + window.x;
       int x = 0;
       for (; x + 4 <= window.width; x += 4) {

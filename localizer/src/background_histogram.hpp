@@ -16,7 +16,8 @@ struct BackgroundFit {
 class BackgroundHistogram {
  public:
   // Counts the values of `image` (CV_8UC1 or CV_16UC1) inside `window`, which
-  // must lie in the image. 16-bit values share bins (at most 4096) by a shift.
+  // must lie in the image; of 8-bit windows of 65536 pixels or more, every other
+  // row. 16-bit values share bins (at most 4096) by a shift.
   void count(const cv::Mat& image, cv::Rect window);
 
   // Gaussian fitted to the background peak: starts at the histogram's mode with
@@ -35,7 +36,7 @@ class BackgroundHistogram {
   double otsu() const;
 
   int bin_width() const { return 1 << shift_; }
-  uint32_t total() const { return total_; }
+  uint32_t total() const { return total_; }  // pixels counted
 
  private:
   // Mean of the values a bin can hold: multiples of the data's quantum.

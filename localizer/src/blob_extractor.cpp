@@ -66,10 +66,6 @@ unsigned touch_rows(const cv::Mat& image, cv::Rect window) {
   return sum;
 }
 
-bool in_square(const Eigen::Vector2d& p, const BlobRoi& roi) {
-  return std::abs(p.x() - roi.center.x()) <= roi.radius && std::abs(p.y() - roi.center.y()) <= roi.radius;
-}
-
 struct Aperture {
   double sum = 0;
   int pixels = 0;
@@ -247,7 +243,7 @@ BlobExtractor::BlobExtractor(BlobExtractor&&) noexcept = default;
 BlobExtractor& BlobExtractor::operator=(BlobExtractor&&) noexcept = default;
 
 tl::expected<void, BlobInputError> BlobExtractor::extract(const cv::Mat& image, int expected, BlobExtraction* out,
-                                                          bool prune) {
+                                                          bool prune, const std::vector<BlobRoi>& measured) {
   out->clear();
   if (auto ok = check_image(image, config_); !ok) return ok;
   blob_internal::WindowPass& pass = scratch_->pass;
@@ -256,7 +252,7 @@ tl::expected<void, BlobInputError> BlobExtractor::extract(const cv::Mat& image, 
   pass.find(w, w.levels.f1);
   if (expected > 0) {
     const int found = pass.accepted();
-    if (found < expected) pass.recover(w, expected - found);
+    if (found < expected) pass.recover(w, expected - found, measured);
     // A split can find more markers than were missing.
     if (prune && pass.accepted() > expected) pass.prune(expected);
   }

@@ -154,8 +154,9 @@ void RegionGrower::grow(const cv::Mat& work, cv::Rect window, const Levels& leve
   const int keep_min = above(levels.f2);
   const int top = work.depth() == CV_8U ? 255 : 65535;
   if (seed_min > top || window.area() <= 0) return;
-  // Large windows: find the rows' seeds with a vectorised comparison first.
-  const bool masked = window.area() >= 4096;
+  // Large 16-bit windows: find the rows' seeds with a vectorised comparison first
+  // (8-bit rows are skipped 8 pixels at a time without one: skip_below).
+  const bool masked = window.area() >= 4096 && (work.depth() != CV_8U || seed_min < 1);
   if (masked) {
     if (seed_mask_.size() != work.size()) seed_mask_.create(work.size(), CV_8U);
     cv::Mat dst = seed_mask_(window);

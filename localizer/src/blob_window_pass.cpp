@@ -134,7 +134,7 @@ void WindowPass::split_by_prediction(const Window& w, const std::vector<Eigen::V
     if (held_[k].size() >= 2) recovery_.split_by_prediction(*w.work, w.rect, w.levels, &grower_, k, held_[k], &regions_);
 }
 
-void WindowPass::recover(const Window& w, int missing) {
+void WindowPass::recover(const Window& w, int missing, const std::vector<BlobRoi>& measured) {
   if (missing <= 0) return;
   if (config_.recover_dim) {
     const size_t first = find(w, w.levels.f2);
@@ -164,14 +164,19 @@ void WindowPass::recover(const Window& w, int missing) {
     // can merge into a round blob).
     auto& order = order_;
     order.clear();
+    const auto measured_there = [&](const Region& r) {
+      return std::any_of(measured.begin(), measured.end(),
+                         [&](const BlobRoi& roi) { return in_square(r.blob.centroid, roi); });
+    };
     for (size_t i = 0; i < regions_.size(); ++i) {
       const Region& r = regions_[i];
-      if (!r.accepted && r.rejected && !r.recovered && !r.quiet && reason_is_shape(r.reason)) order.push_back(i);
+      if (!r.accepted && r.rejected && !r.recovered && !r.quiet && reason_is_shape(r.reason) && !measured_there(r))
+        order.push_back(i);
     }
     const size_t rejected = order.size();
     for (size_t i = 0; i < regions_.size(); ++i) {
       const Region& r = regions_[i];
-      if (r.accepted && r.blob.area >= 2 * config_.min_shape_area) order.push_back(i);
+      if (r.accepted && r.blob.area >= 2 * config_.min_shape_area && !measured_there(r)) order.push_back(i);
     }
     std::sort(order.begin() + std::ptrdiff_t(rejected), order.end(),
               [&](size_t a, size_t b) { return regions_[a].blob.area > regions_[b].blob.area; });

@@ -2,6 +2,7 @@
 // Internal to BlobExtractor: the steps both modes run over one window (the
 // whole image, or a group of overlapping ROIs), with the scratch memory they
 // keep between calls.
+#include <cmath>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
@@ -14,6 +15,11 @@
 #include "tetrapulse/localizer/blob_extractor.hpp"
 
 namespace tetrapulse::blob_internal {
+
+// Whether `p` lies in the square of `roi` (side 2 x radius about its centre), pixels.
+inline bool in_square(const Eigen::Vector2d& p, const BlobRoi& roi) {
+  return std::abs(p.x() - roi.center.x()) <= roi.radius && std::abs(p.y() - roi.center.y()) <= roi.radius;
+}
 
 // One window: its rectangle, its working image and its levels.
 struct Window {
@@ -43,8 +49,10 @@ class WindowPass {
   // More blobs than expected: merge nearly touching pairs, drop isolated ones.
   void prune(int expected);
   // Fewer blobs than expected: the cascade, cheapest first (dim markers,
-  // erosion, circle fit); stops once `missing` are found.
-  void recover(const Window& w, int missing);
+  // erosion, circle fit); stops once `missing` are found. Blobs centred in the
+  // square of one of `measured` (ROIs of this frame, whose own pass split what
+  // merged there) are not split again.
+  void recover(const Window& w, int missing, const std::vector<BlobRoi>& measured = {});
   // Regions that hold two or more of `centres` (predicted marker pixels) are
   // split between them (BlobRecovery::split_by_prediction).
   void split_by_prediction(const Window& w, const std::vector<Eigen::Vector2d>& centres);

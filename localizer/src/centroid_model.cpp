@@ -9,20 +9,21 @@ namespace tetrapulse::localizer_internal {
 CentroidModel::CentroidModel(bool sphere) : sphere_(sphere), decided_(!sphere) {}
 
 void CentroidModel::weigh(const CameraModel& camera, const Target& target, const std::vector<SeenMarker>& seen,
-                          const Pose& pose, double sigma_px) {
+                          const Pose& pose, double rms_px, double sigma_px) {
   if (decided_ || target.marker_diameter_m <= 0 || seen.size() < 4) return;
-  std::vector<MarkerObservation> observations;
-  for (const SeenMarker& s : seen) observations.push_back({target.markers[size_t(s.marker)].position_m, s.pixel});
+  observations_.clear();
+  for (const SeenMarker& s : seen) observations_.push_back({target.markers[size_t(s.marker)].position_m, s.pixel});
+  // The current model's fit is the pose's own; only the other one is refined.
+  const int current = sphere_ ? 0 : 1, other = 1 - current;
   double ssr[2];
-  for (int k = 0; k < 2; ++k) {
-    RefinementOptions o;
-    o.marker_diameter_m = target.marker_diameter_m;
-    o.sphere_centroid = k == 0;
-    o.sigma_px = sigma_px;
-    const auto refined = refine_pose(camera, observations, pose, o);
-    if (!refined) return;  // a marker out of view under one model: not a pose to weigh
-    ssr[k] = refined->rms_px * refined->rms_px * double(observations.size());
-  }
+  ssr[current] = rms_px * rms_px * double(observations_.size());
+  RefinementOptions o;
+  o.marker_diameter_m = target.marker_diameter_m;
+  o.sphere_centroid = other == 0;
+  o.sigma_px = sigma_px;
+  const auto refined = refine_pose(camera, observations_, pose, o);
+  if (!refined) return;  // a marker out of view under the other model: not a pose to weigh
+  ssr[other] = refined->rms_px * refined->rms_px * double(observations_.size());
   ssr_[0] += ssr[0];
   ssr_[1] += ssr[1];
   if (++poses_ < kMinPoses) return;

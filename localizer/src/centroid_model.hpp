@@ -21,6 +21,7 @@
 
 #include "tetrapulse/localizer/camera_model.hpp"
 #include "tetrapulse/localizer/marker_pose.hpp"
+#include "tetrapulse/localizer/pose_refinement.hpp"
 #include "tetrapulse/localizer/targets.hpp"
 
 namespace tetrapulse::localizer_internal {
@@ -38,10 +39,12 @@ class CentroidModel {
   bool sphere() const { return sphere_; }
   bool decided() const { return decided_; }
 
-  // Weighs a pose of all four markers of `target` seen at `seen` (its refinement
-  // under the current model); poses of targets without a diameter are ignored.
+  // Weighs a pose of all four markers of `target` seen at `seen`: `pose` and its
+  // RMS residual `rms_px` are their refinement under the current model (as
+  // refine_pose gives it with centroid noise `sigma_px`), the other model is
+  // refined from there. Poses of targets without a diameter are ignored.
   void weigh(const CameraModel& camera, const Target& target, const std::vector<SeenMarker>& seen, const Pose& pose,
-             double sigma_px);
+             double rms_px, double sigma_px);
 
   // Summed squared residuals so far (pixels^2), for the summary and tests.
   double sphere_ssr() const { return ssr_[0]; }
@@ -52,6 +55,7 @@ class CentroidModel {
   bool decided_;
   int poses_ = 0;
   double ssr_[2] = {0, 0};  // sphere, centre
+  std::vector<MarkerObservation> observations_;
 };
 
 }  // namespace tetrapulse::localizer_internal

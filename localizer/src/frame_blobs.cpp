@@ -47,7 +47,7 @@ tl::expected<void, BlobInputError> FrameBlobs::extract(const cv::Mat& image, con
     extraction_.blobs.push_back(m.blob);
   }
   if (!search_now(first, needs_search)) return {};
-  if (auto r = extract_whole(image, prune_whole); !r) return r;
+  if (auto r = extract_whole(image, plan, prune_whole); !r) return r;
   add_whole_image_blobs(plan);
   return {};
 }
@@ -85,11 +85,15 @@ tl::expected<void, BlobInputError> FrameBlobs::extract_rois(const cv::Mat& image
   return {};
 }
 
-tl::expected<void, BlobInputError> FrameBlobs::extract_whole(const cv::Mat& image, bool prune_whole) {
-  if (extractors_.size() == 1) return extractors_[0].extract(image, expected_[0], &whole_, prune_whole);
+tl::expected<void, BlobInputError> FrameBlobs::extract_whole(const cv::Mat& image, const RoiPlan& plan,
+                                                             bool prune_whole) {
+  if (extractors_.size() == 1) return extractors_[0].extract(image, expected_[0], &whole_, prune_whole, plan.rois);
   whole_.clear();
   for (size_t l = 0; l < extractors_.size(); ++l) {
-    if (auto r = extractors_[l].extract(image, expected_[l], &part_, prune_whole); !r) return r;
+    look_rois_.clear();
+    for (size_t i = 0; i < plan.rois.size(); ++i)
+      if (plan.purposes[i].look == int(l)) look_rois_.push_back(plan.rois[i]);
+    if (auto r = extractors_[l].extract(image, expected_[l], &part_, prune_whole, look_rois_); !r) return r;
     append_look(part_, int(l), &whole_);
   }
   return {};

@@ -67,7 +67,7 @@ class FrameBlobs {
 
  private:
   tl::expected<void, BlobInputError> extract_rois(const cv::Mat& image, const RoiPlan& plan);
-  tl::expected<void, BlobInputError> extract_whole(const cv::Mat& image, bool prune_whole);
+  tl::expected<void, BlobInputError> extract_whole(const cv::Mat& image, const RoiPlan& plan, bool prune_whole);
   void patch_absent_rois(const RoiPlan& plan);
   bool search_now(bool first, bool needs_search);
   void add_whole_image_blobs(const RoiPlan& plan);

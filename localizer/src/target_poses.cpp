@@ -150,7 +150,7 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
   }
   if (solved->used.size() == 4 && markers.unconfirmed.empty() && markers.evidence.merged.empty()) {
     tt.typical_rms_px = std::max(0.05, 0.8 * tt.typical_rms_px + 0.2 * solved->rms_px);
-    centroids->weigh(f.camera, target, markers.confirmed, solved->pose, options.pose.centroid_sigma_px);
+    centroids->weigh(f.camera, target, markers.confirmed, solved->pose, solved->rms_px, options.pose.centroid_sigma_px);
   }
   const bool four_fit = solved->used.size() == 4 && markers.evidence.merged.empty();
   for (int m : solved->used) {

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <random>
 
+#include "tetrapulse/localizer/pose_refinement.hpp"
 #include "tetrapulse/localizer/sphere_image.hpp"
 #include "tetrapulse/localizer/testing/target_views.hpp"
 
@@ -43,7 +44,19 @@ CentroidModel weigh_views(Centroids kind, int poses, int* weighed, uint64_t seed
       }
       seen.push_back({m, px + Eigen::Vector2d(noise(rng), noise(rng))});
     }
-    model.weigh(camera, target, seen, pose, 0.05);
+    // As the localizer does: the pose refined under the current model, then weighed.
+    std::vector<MarkerObservation> observations;
+    for (const SeenMarker& s : seen) observations.push_back({target.markers[size_t(s.marker)].position_m, s.pixel});
+    RefinementOptions o;
+    o.marker_diameter_m = target.marker_diameter_m;
+    o.sphere_centroid = model.sphere();
+    o.sigma_px = 0.05;
+    const auto refined = refine_pose(camera, observations, pose, o);
+    if (!refined) {
+      ADD_FAILURE() << "refinement failed: " << refined.error().message;
+      return model;
+    }
+    model.weigh(camera, target, seen, refined->pose, refined->rms_px, 0.05);
     ++*weighed;
   }
   std::printf("[measure] %s: %d poses weighed, residual sums sphere %.3f centre %.3f px^2 -> %s\n",

@@ -113,9 +113,12 @@ class BlobExtractor {
   // visible (n targets * m markers); 0 = unknown: no pruning, no recovery.
   // `prune` false: more blobs than expected are all kept (coded markers tell
   // clutter apart themselves); fewer still run the recovery cascade.
+  // `measured`: ROIs measured in this frame (ROI mode); a blob centred in one of
+  // their squares is not split to recover missing markers (that pass split what
+  // merged there), which spares a tracked scene most of the recovery's cost.
   // Fills out->blobs (top to bottom), out->rejected, out->windows.
   tl::expected<void, BlobInputError> extract(const cv::Mat& image, int expected, BlobExtraction* out,
-                                             bool prune = true);
+                                             bool prune = true, const std::vector<BlobRoi>& measured = {});
 
   // Regions of interest, while tracking. Fills out->rois (one per ROI, in
   // order), out->blobs (found but taken by no ROI), out->rejected and
