@@ -9,7 +9,8 @@
 //     rows and columns: markers are bright, so a cell they partly fill keeps its
 //     background's level), a 3 x 3 median over the cells, bilinear between cell
 //     centres; where a large bright object lifts it, it is held at most 12 noise
-//     sigmas above the same map of 64 x 64 cells;
+//     sigmas above the same map of 64 x 64 cells (their pixels at every fourth
+//     row and column);
 //   - flat means: the 64-pixel cells' levels span (10th to 90th percentile) at
 //     most 4 noise sigmas, the noise from neighbouring pixels' differences
 //     (1.4826 x their median absolute value / sqrt 2);

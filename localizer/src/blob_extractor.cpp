@@ -148,19 +148,43 @@ class ExtractorScratch {
       group_of[i] = static_cast<int>(groups.size());
       groups.push_back(roi_windows[i]);
     }
-    for (bool merged = true; merged;) {
-      merged = false;
-      for (size_t a = 0; a < groups.size() && !merged; ++a)
-        for (size_t b = a + 1; b < groups.size() && !merged; ++b) {
+    // Overlapping windows join (union-find, a component's root its first window),
+    // then the joined windows are checked again, until none overlap: O(G^2) a round
+    // (merging one pair a scan was O(G^3) when the ROIs of 32 targets overlap). The
+    // groups keep the order of their first ROI.
+    for (bool joined = true; joined;) {
+      joined = false;
+      const size_t g = groups.size();
+      parent.resize(g);
+      for (size_t i = 0; i < g; ++i) parent[i] = int(i);
+      const auto root = [&](int i) {
+        while (parent[size_t(i)] != i) i = parent[size_t(i)] = parent[size_t(parent[size_t(i)])];
+        return i;
+      };
+      for (size_t a = 0; a < g; ++a)
+        for (size_t b = a + 1; b < g; ++b) {
           if ((groups[a] & groups[b]).empty()) continue;
-          groups[a] |= groups[b];
-          groups.erase(groups.begin() + std::ptrdiff_t(b));
-          for (int& g : group_of) {
-            if (g == int(b)) g = int(a);
-            else if (g > int(b)) --g;
-          }
-          merged = true;
+          const int ra = root(int(a)), rb = root(int(b));
+          if (ra == rb) continue;
+          parent[size_t(std::max(ra, rb))] = std::min(ra, rb);
+          joined = true;
         }
+      if (!joined) break;
+      renumber.assign(g, -1);
+      size_t kept = 0;
+      for (size_t i = 0; i < g; ++i) {
+        const int r = root(int(i));
+        if (r == int(i)) {
+          renumber[i] = int(kept);
+          groups[kept++] = groups[i];
+        } else {
+          groups[size_t(renumber[size_t(r)])] |= groups[i];
+        }
+      }
+      for (size_t i = 0; i < g; ++i) renumber[i] = renumber[size_t(root(int(i)))];
+      groups.resize(kept);
+      for (int& gi : group_of)
+        if (gi >= 0) gi = renumber[size_t(gi)];
     }
   }
 
@@ -228,6 +252,7 @@ class ExtractorScratch {
   std::vector<cv::Rect> roi_windows;
   std::vector<int> group_of;  // group of each ROI; -1: outside the image
   std::vector<cv::Rect> groups;
+  std::vector<int> parent, renumber;  // group_windows' union-find
   std::vector<int> members;  // ROIs of the group being processed
   std::vector<size_t> group_blobs;
   std::vector<Eigen::Vector2d> centres;  // of the group's ROIs that split merged blobs
