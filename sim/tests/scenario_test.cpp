@@ -29,7 +29,7 @@ TEST(BuiltinScenarios, AllExistAndParse) {
                                           "clutter",    "fisheye",   "frequency",  "agile",      "distortion",
                                           "beam-spread", "dropouts",  "sat-exp1-5x", "sat-exp1-20x", "sat-landing",
                                           "sat-clutter", "sat-fisheye", "agile-sat",  "crowd",      "crowd-on-off", "sat-bloom",
-                                          "sat-passive", "passive-dark", "colour", "mixed"};
+                                          "sat-passive", "passive-dark", "colour", "mixed", "climb-colour"};
   std::set<std::string> names;
   for (const BuiltinScenario& b : builtin_scenarios()) {
     names.insert(b.name);
