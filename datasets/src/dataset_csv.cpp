@@ -118,9 +118,15 @@ DatasetResult<std::vector<FrameRecord>> read_timestamps_csv(const std::string& p
   });
 }
 
+std::string format_frames_header() { return std::string(kFramesHeader) + "\n"; }
+
+std::string format_frames_row(const FrameRecord& f) {
+  return fmt::format("{},{},{},{}\n", f.frame, f.timestamp_ns, f.exposure_ns, f.file);
+}
+
 std::string format_frames_csv(const std::vector<FrameRecord>& frames) {
-  std::string out = std::string(kFramesHeader) + "\n";
-  for (const auto& f : frames) out += fmt::format("{},{},{},{}\n", f.frame, f.timestamp_ns, f.exposure_ns, f.file);
+  std::string out = format_frames_header();
+  for (const auto& f : frames) out += format_frames_row(f);
   return out;
 }
 

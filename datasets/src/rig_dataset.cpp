@@ -87,6 +87,17 @@ DatasetResult<RigDatasetWriter> RigDatasetWriter::create(const std::string& fold
   w.folder_ = folder;
   w.camera_ = camera;
   w.targets_ = targets;
+  const fs::path dir(folder);
+  if (auto r = write_text_file((dir / "camera.yaml").string(), format_camera_yaml(camera)); !r) {
+    return tl::unexpected(r.error());
+  }
+  if (auto r = write_text_file((dir / "targets.yaml").string(), format_targets_yaml(targets)); !r) {
+    return tl::unexpected(r.error());
+  }
+  const std::string csv = (dir / "frames.csv").string();
+  w.frames_csv_.open(csv, std::ios::binary | std::ios::trunc);
+  w.frames_csv_ << format_frames_header() << std::flush;
+  if (!w.frames_csv_) return dataset_error(csv, 0, std::string("cannot write: ") + std::strerror(errno));
   return w;
 }
 
@@ -106,14 +117,19 @@ DatasetResult<void> RigDatasetWriter::add_frame(int64_t frame, int64_t timestamp
   }
   if (!ok) return dataset_error(path, 0, std::string("cannot write image: ") + std::strerror(errno));
   frames_.push_back(FrameRecord{frame, timestamp_ns, exposure_ns, rel});
+  frames_csv_ << format_frames_row(frames_.back()) << std::flush;
+  if (!frames_csv_) return dataset_error(path_of_frames_csv(), 0, std::string("cannot append a row: ") + std::strerror(errno));
   return {};
 }
 
+std::string RigDatasetWriter::path_of_frames_csv() const { return (fs::path(folder_) / "frames.csv").string(); }
+
 DatasetResult<void> RigDatasetWriter::finish() {
   const fs::path dir(folder_);
-  if (auto r = write_text_file((dir / "camera.yaml").string(), format_camera_yaml(camera_)); !r) return r;
-  if (auto r = write_text_file((dir / "targets.yaml").string(), format_targets_yaml(targets_)); !r) return r;
-  if (auto r = write_text_file((dir / "frames.csv").string(), format_frames_csv(frames_)); !r) return r;
+  if (frames_csv_.is_open()) {
+    frames_csv_.close();
+    if (!frames_csv_) return dataset_error(path_of_frames_csv(), 0, std::string("cannot close: ") + std::strerror(errno));
+  }
   if (!groundtruth_.empty()) {
     if (auto r = write_text_file((dir / "groundtruth.csv").string(), format_groundtruth_csv(groundtruth_)); !r) {
       return r;

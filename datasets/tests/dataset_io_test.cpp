@@ -272,6 +272,49 @@ TEST(FramesCsv, SkipsMalformedRowsNamingEachLine) {
   EXPECT_FALSE(read_frames_csv(dir.file("g.csv", "frame,time,exposure_ns,file\n0,1,1,a.png\n"), &skipped));
 }
 
+// A recording that dies before finish() (a crash, a killed process, a pulled
+// cable) is still a dataset: camera.yaml and targets.yaml are written at once,
+// and every frame's row is in frames.csv as soon as its PNG is.
+TEST(RigDataset, WriterLeavesADatasetAfterEveryFrameWithoutFinish) {
+  TempDir dir;
+  auto camera = parse_camera_yaml(kCamera, "camera.yaml");
+  auto targets = parse_targets_yaml(kPaperTargets, "targets.yaml");
+  ASSERT_TRUE(camera && targets);
+  const std::string folder = dir.str() + "/live";
+  auto w = RigDatasetWriter::create(folder, *camera, *targets);
+  ASSERT_TRUE(w) << w.error().what();
+  {
+    auto empty = RigDataset::open(folder);
+    ASSERT_TRUE(empty) << empty.error().what();
+    EXPECT_EQ(empty->frames().size(), 0u);
+  }
+  const cv::Mat img(480, 752, CV_8UC1, cv::Scalar(9));
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(w->add_frame(k, 1'000'000 + k * 10'000'000, 2'000'000, img));
+    auto d = RigDataset::open(folder);  // what a reader finds if the process died now
+    ASSERT_TRUE(d) << d.error().what();
+    ASSERT_EQ(d->frames().size(), size_t(k + 1));
+    EXPECT_EQ(d->frames().back().timestamp_ns, 1'000'000 + k * 10'000'000);
+    EXPECT_TRUE(d->load_image(size_t(k)));
+  }
+  ASSERT_TRUE(w->finish());
+  auto d = RigDataset::open(folder);
+  ASSERT_TRUE(d) << d.error().what();
+  EXPECT_EQ(d->frames().size(), 3u);
+}
+
+TEST(RigDataset, WriterNamesTheFileItCannotWrite) {
+  TempDir dir;
+  auto camera = parse_camera_yaml(kCamera, "camera.yaml");
+  auto targets = parse_targets_yaml(kPaperTargets, "targets.yaml");
+  ASSERT_TRUE(camera && targets);
+  const std::string folder = dir.str() + "/ro";
+  std::filesystem::create_directories(folder + "/camera.yaml");  // a folder where the file should go
+  auto w = RigDatasetWriter::create(folder, *camera, *targets);
+  ASSERT_FALSE(w);
+  EXPECT_NE(w.error().what().find("camera.yaml"), std::string::npos) << w.error().what();
+}
+
 TEST(RigDataset, WriterOutputReadsBackWithEveryFieldPreserved) {
   TempDir dir;
   auto camera = parse_camera_yaml(kCamera, "camera.yaml");

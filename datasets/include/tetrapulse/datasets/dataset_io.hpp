@@ -62,6 +62,9 @@ std::string format_targets_yaml(const TargetsFile& targets);
 DatasetResult<std::vector<FrameRecord>> read_frames_csv(const std::string& path,
                                                         std::vector<DatasetError>* skipped_lines = nullptr);
 std::string format_frames_csv(const std::vector<FrameRecord>& frames);
+// The header line of frames.csv, and one row (each with its newline).
+std::string format_frames_header();
+std::string format_frames_row(const FrameRecord& frame);
 
 // A recording's timestamps (a video beside it): frames.csv without the file
 // column, header frame,timestamp_ns,exposure_ns; the same checks. `file` is empty.

@@ -2,6 +2,7 @@
 // A rig dataset folder (docs/rig-dataset.md): reading it for the localizer and
 // evaluation, and writing one for the simulator and recorders.
 #include <optional>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -53,15 +54,19 @@ class RigDataset {
 // Writes a dataset folder: images as they come, the CSV and YAML files on finish().
 class RigDatasetWriter {
  public:
-  // Creates `folder` and `folder/frames`; fails when they cannot be created.
+  // Creates `folder` and `folder/frames`, writes camera.yaml and targets.yaml and
+  // starts frames.csv (its header); fails, naming the file, when one cannot be written.
+  // From then on the folder is a dataset: a recording that dies keeps every frame
+  // added so far.
   static DatasetResult<RigDatasetWriter> create(const std::string& folder, const CameraInfo& camera,
                                                 const TargetsFile& targets);
 
-  // Writes frames/NNNNNN.png (8- or 16-bit grey, or 8-bit BGR) and records the row.
+  // Writes frames/NNNNNN.png (8- or 16-bit grey, or 8-bit BGR), then appends its
+  // row to frames.csv and flushes it (to the OS: a crash of the process loses none).
   DatasetResult<void> add_frame(int64_t frame, int64_t timestamp_ns, int64_t exposure_ns, const cv::Mat& image);
   void add_groundtruth(const GroundTruthRecord& row) { groundtruth_.push_back(row); }
 
-  // Writes camera.yaml, targets.yaml, frames.csv and groundtruth.csv (if any rows).
+  // Closes frames.csv and writes groundtruth.csv (if any rows).
   DatasetResult<void> finish();
 
   const std::string& folder() const { return folder_; }
@@ -72,6 +77,9 @@ class RigDatasetWriter {
   TargetsFile targets_;
   std::vector<FrameRecord> frames_;
   std::vector<GroundTruthRecord> groundtruth_;
+  std::string path_of_frames_csv() const;
+
+  std::ofstream frames_csv_;  // open from create() to finish()
 };
 
 }  // namespace tetrapulse
