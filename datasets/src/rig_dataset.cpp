@@ -118,7 +118,9 @@ DatasetResult<void> RigDatasetWriter::add_frame(int64_t frame, int64_t timestamp
   if (!ok) return dataset_error(path, 0, std::string("cannot write image: ") + std::strerror(errno));
   frames_.push_back(FrameRecord{frame, timestamp_ns, exposure_ns, rel});
   frames_csv_ << format_frames_row(frames_.back()) << std::flush;
-  if (!frames_csv_) return dataset_error(path_of_frames_csv(), 0, std::string("cannot append a row: ") + std::strerror(errno));
+  if (!frames_csv_) {
+    return dataset_error(path_of_frames_csv(), 0, std::string("cannot append a row: ") + std::strerror(errno));
+  }
   return {};
 }
 
@@ -128,7 +130,9 @@ DatasetResult<void> RigDatasetWriter::finish() {
   const fs::path dir(folder_);
   if (frames_csv_.is_open()) {
     frames_csv_.close();
-    if (!frames_csv_) return dataset_error(path_of_frames_csv(), 0, std::string("cannot close: ") + std::strerror(errno));
+    if (!frames_csv_) {
+      return dataset_error(path_of_frames_csv(), 0, std::string("cannot close: ") + std::strerror(errno));
+    }
   }
   if (!groundtruth_.empty()) {
     if (auto r = write_text_file((dir / "groundtruth.csv").string(), format_groundtruth_csv(groundtruth_)); !r) {

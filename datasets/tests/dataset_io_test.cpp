@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <optional>
 #include <fstream>
 
 #include <opencv2/imgcodecs.hpp>
@@ -272,16 +273,27 @@ TEST(FramesCsv, SkipsMalformedRowsNamingEachLine) {
   EXPECT_FALSE(read_frames_csv(dir.file("g.csv", "frame,time,exposure_ns,file\n0,1,1,a.png\n"), &skipped));
 }
 
+// The writer tests' camera.yaml and targets.yaml, parsed (none if either fails).
+struct WriterInputs {
+  CameraInfo camera;
+  TargetsFile targets;
+};
+std::optional<WriterInputs> writer_inputs() {
+  auto camera = parse_camera_yaml(kCamera, "camera.yaml");
+  auto targets = parse_targets_yaml(kPaperTargets, "targets.yaml");
+  if (!camera || !targets) return std::nullopt;
+  return WriterInputs{*camera, *targets};
+}
+
 // A recording that dies before finish() (a crash, a killed process, a pulled
 // cable) is still a dataset: camera.yaml and targets.yaml are written at once,
 // and every frame's row is in frames.csv as soon as its PNG is.
 TEST(RigDataset, WriterLeavesADatasetAfterEveryFrameWithoutFinish) {
   TempDir dir;
-  auto camera = parse_camera_yaml(kCamera, "camera.yaml");
-  auto targets = parse_targets_yaml(kPaperTargets, "targets.yaml");
-  ASSERT_TRUE(camera && targets);
+  const auto in = writer_inputs();
+  ASSERT_TRUE(in);
   const std::string folder = dir.str() + "/live";
-  auto w = RigDatasetWriter::create(folder, *camera, *targets);
+  auto w = RigDatasetWriter::create(folder, in->camera, in->targets);
   ASSERT_TRUE(w) << w.error().what();
   {
     auto empty = RigDataset::open(folder);
@@ -305,23 +317,21 @@ TEST(RigDataset, WriterLeavesADatasetAfterEveryFrameWithoutFinish) {
 
 TEST(RigDataset, WriterNamesTheFileItCannotWrite) {
   TempDir dir;
-  auto camera = parse_camera_yaml(kCamera, "camera.yaml");
-  auto targets = parse_targets_yaml(kPaperTargets, "targets.yaml");
-  ASSERT_TRUE(camera && targets);
+  const auto in = writer_inputs();
+  ASSERT_TRUE(in);
   const std::string folder = dir.str() + "/ro";
   std::filesystem::create_directories(folder + "/camera.yaml");  // a folder where the file should go
-  auto w = RigDatasetWriter::create(folder, *camera, *targets);
+  auto w = RigDatasetWriter::create(folder, in->camera, in->targets);
   ASSERT_FALSE(w);
   EXPECT_NE(w.error().what().find("camera.yaml"), std::string::npos) << w.error().what();
 }
 
 TEST(RigDataset, WriterOutputReadsBackWithEveryFieldPreserved) {
   TempDir dir;
-  auto camera = parse_camera_yaml(kCamera, "camera.yaml");
-  auto targets = parse_targets_yaml(kPaperTargets, "targets.yaml");
-  ASSERT_TRUE(camera && targets);
+  const auto in = writer_inputs();
+  ASSERT_TRUE(in);
   const std::string folder = dir.str() + "/ds";
-  auto w = RigDatasetWriter::create(folder, *camera, *targets);
+  auto w = RigDatasetWriter::create(folder, in->camera, in->targets);
   ASSERT_TRUE(w) << w.error().what();
   cv::Mat img8(480, 752, CV_8UC1, cv::Scalar(7));
   cv::Mat img16(480, 752, CV_16UC1, cv::Scalar(4000));
@@ -337,8 +347,8 @@ TEST(RigDataset, WriterOutputReadsBackWithEveryFieldPreserved) {
 
   auto d = RigDataset::open(folder);
   ASSERT_TRUE(d) << d.error().what();
-  EXPECT_EQ(format_camera_yaml(d->camera()), format_camera_yaml(*camera));
-  EXPECT_EQ(format_targets_yaml(d->targets()), format_targets_yaml(*targets));
+  EXPECT_EQ(format_camera_yaml(d->camera()), format_camera_yaml(in->camera));
+  EXPECT_EQ(format_targets_yaml(d->targets()), format_targets_yaml(in->targets));
   ASSERT_EQ(d->frames().size(), 2u);
   EXPECT_EQ(d->frames()[1].frame, 2);
   EXPECT_EQ(d->frames()[1].timestamp_ns, 21'000'000);

@@ -1,6 +1,6 @@
-// tetrapulse demo: the virtual rig end to end. Simulates paper-exp1 and swarm
-// (or the scenarios given with --scenario: built-in names or YAML files), localizes them, evaluates against ground truth, prints the accuracy table and
-// writes a trajectory plot, an annotated frame strip and an overlay video (every
+// tetrapulse demo: the virtual rig end to end. Simulates paper-exp1 and swarm (or
+// the scenarios given with --scenario: built-in names or YAML files), localizes
+// them, evaluates against ground truth, prints the accuracy table and writes a trajectory plot, an annotated frame strip and an overlay video (every
 // frame, measured and true poses drawn) per scenario.
 #include <chrono>
 #include <cstdio>
@@ -180,20 +180,19 @@ struct ScenarioOutcome {
 };
 
 // One scenario: simulate, localize, evaluate, draw. Errors name the file at fault.
-DatasetResult<ScenarioOutcome> run_scenario(const std::string& name_or_path, const DemoArgs& a,
-                                            const DemoSimulation& simulate) {
-  auto scenario = sim::load_scenario(name_or_path);
-  if (!scenario) return tl::unexpected(scenario.error());
-  const std::string name = scenario->name.empty() ? fs::path(name_or_path).stem().string() : scenario->name;
+// `name_or_path`: what --scenario gave, for a file whose scenario has no name.
+DatasetResult<ScenarioOutcome> run_scenario(const sim::Scenario& scenario, const std::string& name_or_path,
+                                            const DemoArgs& a, const DemoSimulation& simulate) {
+  const std::string name = scenario.name.empty() ? fs::path(name_or_path).stem().string() : scenario.name;
   const std::string folder = (fs::path(a.out) / name).string();
   const std::string data = (fs::path(folder) / "dataset").string();
   std::error_code ec;
   fs::remove_all(data, ec);  // the demo's own dataset from an earlier run
   fs::create_directories(folder, ec);
   if (ec) return dataset_error(folder, 0, "cannot create the folder: " + ec.message());
-  const int64_t frames = std::max<int64_t>(1, int64_t(a.seconds * 1e9 / double(scenario->frames.period_ns)));
+  const int64_t frames = std::max<int64_t>(1, int64_t(a.seconds * 1e9 / double(scenario.frames.period_ns)));
   if (!a.quiet) fmt::print(stderr, "tetrapulse demo: {}: simulating {} frames\n", name, frames);
-  if (auto s = simulate(*scenario, data, frames); !s) return tl::unexpected(s.error());
+  if (auto s = simulate(scenario, data, frames); !s) return tl::unexpected(s.error());
   auto dataset = RigDataset::open(data);
   if (!dataset) return tl::unexpected(dataset.error());
   if (!a.quiet) fmt::print(stderr, "tetrapulse demo: {}: localizing\n", name);
@@ -208,7 +207,7 @@ DatasetResult<ScenarioOutcome> run_scenario(const std::string& name_or_path, con
   }
   auto evaluation = evaluate_poses(*dataset, localized->rows, (fs::path(folder) / "poses.csv").string());
   if (!evaluation) return tl::unexpected(evaluation.error());
-  const bool camera_moves = !std::holds_alternative<sim::StaticMotion>(scenario->camera_motion);
+  const bool camera_moves = !std::holds_alternative<sim::StaticMotion>(scenario.camera_motion);
   if (auto r = write_png((fs::path(folder) / "trajectory.png").string(),
                          trajectory_figure(*dataset, *localized, name, camera_moves));
       !r) {
@@ -227,10 +226,14 @@ int run_demo(const DemoArgs& a, const DemoSimulation& simulate) {
   std::vector<std::string> names = a.scenarios;
   if (names.empty()) names.assign(std::begin(kDemoScenarios), std::end(kDemoScenarios));
   // Every scenario is read before the first is simulated: a typo costs no minutes.
-  for (const std::string& n : names)
-    if (auto s = sim::load_scenario(n); !s) return fail(kExitUsage, s.error().what());
+  std::vector<sim::Scenario> scenarios;
   for (const std::string& n : names) {
-    auto outcome = run_scenario(n, a, simulate);
+    auto s = sim::load_scenario(n);
+    if (!s) return fail(kExitUsage, s.error().what());
+    scenarios.push_back(std::move(*s));
+  }
+  for (size_t i = 0; i < names.size(); ++i) {
+    auto outcome = run_scenario(scenarios[i], names[i], a, simulate);
     if (!outcome) return fail(kExitFailure, outcome.error().what());
     if (outcome->stopped) {
       return fail(kExitFailure, fmt::format("stopped by a signal; {}/poses.csv has the frames localized so far",

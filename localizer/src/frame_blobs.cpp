@@ -65,15 +65,19 @@ void append_look(const BlobExtraction& part, int look, BlobExtraction* out) {
 
 }  // namespace
 
+void FrameBlobs::gather_look(const RoiPlan& plan, int look) {
+  look_rois_.clear();
+  look_index_.clear();
+  for (size_t i = 0; i < plan.rois.size(); ++i)
+    if (plan.purposes[i].look == look) look_rois_.push_back(plan.rois[i]), look_index_.push_back(i);
+}
+
 tl::expected<void, BlobInputError> FrameBlobs::extract_rois(const cv::Mat& image, const RoiPlan& plan) {
   if (extractors_.size() == 1) return extractors_[0].extract(image, plan.rois, &extraction_);
   extraction_.clear();
   extraction_.rois.resize(plan.rois.size());
   for (size_t l = 0; l < extractors_.size(); ++l) {
-    look_rois_.clear();
-    look_index_.clear();
-    for (size_t i = 0; i < plan.rois.size(); ++i)
-      if (plan.purposes[i].look == int(l)) look_rois_.push_back(plan.rois[i]), look_index_.push_back(i);
+    gather_look(plan, int(l));
     if (look_rois_.empty()) continue;
     if (auto r = extractors_[l].extract(image, look_rois_, &part_); !r) return r;
     for (size_t j = 0; j < look_index_.size(); ++j) {
@@ -90,9 +94,7 @@ tl::expected<void, BlobInputError> FrameBlobs::extract_whole(const cv::Mat& imag
   if (extractors_.size() == 1) return extractors_[0].extract(image, expected_[0], &whole_, prune_whole, plan.rois);
   whole_.clear();
   for (size_t l = 0; l < extractors_.size(); ++l) {
-    look_rois_.clear();
-    for (size_t i = 0; i < plan.rois.size(); ++i)
-      if (plan.purposes[i].look == int(l)) look_rois_.push_back(plan.rois[i]);
+    gather_look(plan, int(l));
     if (auto r = extractors_[l].extract(image, expected_[l], &part_, prune_whole, look_rois_); !r) return r;
     append_look(part_, int(l), &whole_);
   }
@@ -115,7 +117,8 @@ void FrameBlobs::patch_absent_rois(const RoiPlan& plan) {
     const Eigen::Vector2d& p = extraction_.blobs[size_t(nearest)].centroid;
     bool closer = false;
     for (size_t j = 0; j < plan.rois.size() && !closer; ++j)
-      closer = j != i && plan.purposes[j].look == plan.purposes[i].look && (p - plan.rois[j].center).norm() < nearest_d;
+      closer = j != i && plan.purposes[j].look == plan.purposes[i].look &&
+               (p - plan.rois[j].center).norm() < nearest_d;
     if (closer) continue;
     m.status = RoiStatus::kDetected;
     m.blob = extraction_.blobs[size_t(nearest)];

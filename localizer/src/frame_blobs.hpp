@@ -66,6 +66,8 @@ class FrameBlobs {
   const std::vector<SearchHit>& search_hits() const { return hits_; }
 
  private:
+  // The plan's ROIs of `look` (look_rois_) and their indices in the plan (look_index_).
+  void gather_look(const RoiPlan& plan, int look);
   tl::expected<void, BlobInputError> extract_rois(const cv::Mat& image, const RoiPlan& plan);
   tl::expected<void, BlobInputError> extract_whole(const cv::Mat& image, const RoiPlan& plan, bool prune_whole);
   void patch_absent_rois(const RoiPlan& plan);
