@@ -90,6 +90,7 @@ std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& ta
     const int best = clear_minimum(off, n, 3.0, 4.0 / std::max(hints.front().uncertainty_px, 0.5));
     if (best >= 0 && off[size_t(best)] <= 3.0) chosen = best;
   }
+  const bool by_hint = chosen >= 0;
   std::array<double, 4> d{};
   d.fill(std::numeric_limits<double>::infinity());
   if (prediction)
@@ -135,6 +136,7 @@ std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& ta
   if (chosen < 0 || (prediction && !near_prediction(chosen))) return std::nullopt;
   auto out = refine(camera, target, seen, poses[size_t(chosen)], PoseStatus::kThreeMarkers, options);
   if (!out || !(out->rms_px <= options.max_rms_px)) return std::nullopt;
+  out->hinted = by_hint;
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "marker_reassociation.hpp"
 #include "roi_planner.hpp"
 #include "tetrapulse/localizer/code_clock.hpp"
 
@@ -12,6 +13,12 @@ namespace {
 constexpr double kMinRmsGatePx = 0.2;         // the fit a pose needs, at the least
 constexpr double kMinRotationGate = 0.04;     // rad
 constexpr double kMinTranslationGate = 0.03;  // of the distance
+// However long the target coasted, a pose that rests on the prediction alone is
+// not taken this far from it: P3P's other roots of a triangle of markers lie
+// 0.5-3 rad away, so beyond this the root nearest an extrapolation is no evidence.
+constexpr double kMaxRotationGate = 0.2;     // rad
+constexpr double kMaxTranslationGate = 0.2;  // of the distance: a drone identified from three markers at
+                                             // 2.5 m, its first poses few, deviates 0.1-0.2 (crowd)
 
 struct FrameMarkers {
   std::vector<SeenMarker> confirmed, unconfirmed;
@@ -108,18 +115,22 @@ std::optional<MarkerPose> solve(const PoseFrame& f, const Target& target, const 
 }
 
 // Whether a pose that rests on the prediction (three markers) agrees with it:
-// within max(floor, 4 x the prediction's running error x g), g the square of the
-// frames since the last pose (an acceleration's effect on the extrapolation). The
-// floor itself does not grow: a target that coasted a few frames on a flat running
-// error must not let a flipped root through. A flipped root or a pose through a
-// stray marker fails it.
+// within max(floor, min(4 x the prediction's running error x g, ceiling)), g the
+// square of the frames since the last pose (an acceleration's effect on the
+// extrapolation). The floor itself does not grow: a target that coasted a few
+// frames on a flat running error must not let a flipped root through; nor does
+// the gate grow past the ceiling: a target that stopped short while its markers
+// were dark overshoots its extrapolation, and its tracks can take each other's
+// blobs, whose roots then lie wherever P3P puts them. A flipped root or a pose
+// through a stray marker fails it. (A root the dark marker's own track picked
+// rests on the image instead: MarkerPose::hinted.)
 bool agrees_with_prediction(const TrackedTarget& tt, const Pose& pose, double frames_since) {
   if (!tt.predicted) return false;
   const double growth = std::max(1.0, frames_since * frames_since);
   const double rot = rotation_angle_between(pose.R, tt.predicted->R);
   const double rel = (pose.t - tt.predicted->t).norm() / std::max(tt.predicted->t.norm(), 0.1);
-  return rot <= std::max(kMinRotationGate, 4 * tt.prediction_error_rad * growth) &&
-         rel <= std::max(kMinTranslationGate, 4 * tt.prediction_error_rel * growth);
+  return rot <= std::max(kMinRotationGate, std::min(4 * tt.prediction_error_rad * growth, kMaxRotationGate)) &&
+         rel <= std::max(kMinTranslationGate, std::min(4 * tt.prediction_error_rel * growth, kMaxTranslationGate));
 }
 
 }  // namespace
@@ -140,12 +151,29 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
   }
   const double since = f.frame_period_ns > 0 ? double(mid - tt.last_pose_ns) / double(f.frame_period_ns) : 1.0;
   auto solved = solve(f, target, tt, pose_options, &markers);
-  // A pose of fewer than four confirmed markers rests on the prediction: it must agree with it.
+  // A pose of fewer than four confirmed markers rests on the prediction: it must
+  // agree with it, unless the dark marker's own track picked its root.
   const bool rests_on_prediction =
       solved && (solved->status == PoseStatus::kThreeMarkers || markers.confirmed.size() < 4);
-  if (rests_on_prediction && !agrees_with_prediction(tt, solved->pose, since)) solved.reset();
+  if (rests_on_prediction && !solved->hinted && !agrees_with_prediction(tt, solved->pose, since)) solved.reset();
   if (!solved) {
-    if (mid - tt.last_pose_ns > options.forget_after_ns) tt.forget();
+    // Its tracks may have taken each other's blobs: the one assignment of the blobs
+    // around it that fits (marker_reassociation.hpp) gives the pose and the tracks.
+    if (auto found = reassociate(f, t, *roster, pose_options, kMaxRotationGate + kMaxTranslationGate)) {
+      for (int m = 0; m < 4; ++m) {
+        if (tt.track_of[size_t(m)] == found->tracks[size_t(m)]) continue;
+        tt.assign(m, found->tracks[size_t(m)]);
+        tt.confirmed[size_t(m)] = true;
+      }
+      solved = found->pose;
+      markers = markers_of(f, t, frequency_of, tt);
+    }
+  }
+  if (!solved) {
+    // Holding no track, it has nothing a pose could come from: forgotten now, so that
+    // its markers' new tracks identify it again (a code length, not forget_after_ns).
+    const bool holds_a_track = std::any_of(tt.track_of.begin(), tt.track_of.end(), [](int64_t id) { return id >= 0; });
+    if (!holds_a_track || mid - tt.last_pose_ns > options.forget_after_ns) tt.forget();
     return std::nullopt;
   }
   if (solved->used.size() == 4 && markers.unconfirmed.empty() && markers.evidence.merged.empty()) {

@@ -9,11 +9,16 @@
 //   - Three markers: P3P's roots told apart by a dark marker's hint (its track's
 //     own motion), by the light a lit marker's code says should be where a root
 //     puts it, or by the prediction (marker_pose.hpp); never a root far from the
-//     prediction, and nothing when the ambiguity stays.
+//     prediction, and nothing when the ambiguity stays. Such a pose must agree
+//     with the prediction within a gate that grows with the frames since the last
+//     pose up to a ceiling, unless the dark marker's own track picked the root.
+//   - No pose from its tracks: the blobs around it, assigned afresh, when exactly
+//     one assignment fits all four (marker_reassociation.hpp); it then owns them.
 // The prediction is trusted less the further it extrapolates. Then the
 // bookkeeping a pose brings: a marker left out max_outlier_frames in a row
 // leaves the target; the prediction's running error; the predictor's history.
-// A target without a pose for forget_after_ns is forgotten.
+// A target that holds no track is forgotten at once (identification finds it
+// again within a code length), else after forget_after_ns without a pose.
 #include <array>
 #include <cstdint>
 #include <optional>

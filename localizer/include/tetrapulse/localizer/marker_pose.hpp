@@ -21,9 +21,9 @@
 //                unless a farther root near the prediction is the one the
 //                fourth marker's light explains (then the ambiguity stands);
 //              every root taken must lie within max_prediction_distance of the
-//              prediction. Then refined: status kThreeMarkers. Without a
-//              prediction three markers give no pose; an unresolved ambiguity
-//              gives none either.
+//              prediction. Then refined: status kThreeMarkers (`hinted` when
+//              the hint picked the root). Without a prediction only a hint picks
+//              a root; an unresolved ambiguity gives no pose.
 // A pose is returned only when its RMS reprojection error is at most
 // max_rms_px. With four markers whose pose misses that, each marker is left out
 // in turn as above; the one whose absence leaves a pose that fits and agrees
@@ -107,6 +107,9 @@ struct MarkerPose {
   PoseStatus status = PoseStatus::kAllMarkers;
   std::vector<int> used;  // markers the pose used
   int outlier = -1;       // a marker left out because it did not fit, or -1
+  // Three markers: the root was the one the fourth marker's own track (its hint)
+  // picked, evidence of the image rather than of the prediction.
+  bool hinted = false;
   double rms_px = 0;
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();  // of (w, v), pose_refinement.hpp
   bool has_covariance = false;
