@@ -1,6 +1,7 @@
 // tetrapulse eval: a poses file against its dataset's ground truth.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "exit_codes.hpp"
 #include "vision_commands.hpp"
 #include "tetrapulse/datasets/pose_evaluation.hpp"
+#include "tetrapulse/sim/scenario_yaml.hpp"
 
 namespace tetrapulse::cli {
 
@@ -60,12 +62,31 @@ std::string check_thresholds(const EvalArgs& a, const Evaluation& e) {
   return failed;
 }
 
+// A dataset tetrapulse sim wrote keeps its scenario (scenario.yaml): the clocks of
+// boards that ran free are known, and coverage counts the frames their markers were
+// truly lit (over a long recording a 200 ppm crystal drifts whole bits off the
+// nominal clock). Without it, or when it does not load, the nominal clock (said so).
+EvaluationOptions evaluation_options_for(const RigDataset& dataset) {
+  EvaluationOptions options;
+  const std::string path = dataset.path_of("scenario.yaml");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return options;
+  auto scenario = sim::load_scenario(path);
+  if (!scenario) {
+    std::fprintf(stderr, "tetrapulse eval: %s: %s; free-running boards counted by their nominal clocks\n",
+                 path.c_str(), scenario.error().what().c_str());
+    return options;
+  }
+  options.board_clocks = sim::free_running_code_clocks(*scenario);
+  return options;
+}
+
 int run_eval(const EvalArgs& a) {
   auto dataset = RigDataset::open(a.dataset);
   if (!dataset) return fail(kExitBadInput, dataset.error().what());
   auto poses = read_poses_csv(a.poses);
   if (!poses) return fail(kExitBadInput, poses.error().what());
-  auto evaluation = evaluate_poses(*dataset, *poses, a.poses);
+  auto evaluation = evaluate_poses(*dataset, *poses, a.poses, evaluation_options_for(*dataset));
   if (!evaluation) return fail(kExitBadInput, evaluation.error().what());
   if (a.json) {
     std::fputs(evaluation_json(*evaluation).c_str(), stdout);
@@ -98,7 +119,8 @@ void add_eval_command(CLI::App& app, int* result) {
   cmd->footer(
       "Errors: position |t - t_true|, orientation angle of R_true^T R. Coverage: frames with a pose / frames where\n"
       "the target had >= 3 markers lit and in view. Latency: frames from a target becoming visible to its first\n"
-      "pose. Misidentified: rows whose pose is not that of the target they name.");
+      "pose. Misidentified: rows whose pose is not that of the target they name. Boards that run free are\n"
+      "counted by their own clocks when the dataset holds the scenario.yaml tetrapulse sim writes.");
   cmd->callback([args, result] { *result = run_eval(*args); });
 }
 

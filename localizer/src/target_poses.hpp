@@ -11,7 +11,7 @@
 //     puts it, or by the prediction (marker_pose.hpp); never a root far from the
 //     prediction, and nothing when the ambiguity stays. Such a pose must agree
 //     with the prediction within a gate that grows with the frames since the last
-//     pose up to a ceiling, unless the dark marker's own track picked the root.
+//     pose, unless the dark marker's own track picked the root.
 //   - No pose from its tracks: the blobs around it, assigned afresh, when exactly
 //     one assignment fits all four (marker_reassociation.hpp); it then owns them.
 // The prediction is trusted less the further it extrapolates. Then the

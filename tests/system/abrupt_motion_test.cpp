@@ -59,9 +59,11 @@ TEST(AbruptMotion, ADroneThatStopsShortWhileDarkIsNeverReportedWrong) {
   // crowd-on-off's drone 17 flies at 3 m/s, 6 m away, and stops dead at 0.6 s
   // (frame 60) with its markers dark for two frames: every track overshoots its
   // blob by 14 px, and one takes the blob of the marker beside it. The three
-  // others' P3P roots then lie 0.6 rad from the prediction; a gate that grew with
-  // the frames since the last pose let one through at frame 67, and it was
-  // reported for the next 530 frames, 1 m and 36 degrees off.
+  // others' P3P roots then lie 0.6 rad from the prediction, and the gate, grown
+  // with the frames since the last pose, let one through at frame 67: reported
+  // for the next 530 frames, 1 m and 36 degrees off. Now its four blobs are
+  // fitted afresh in frame 63 (marker_reassociation.hpp) and the tracks take
+  // their own blobs back.
   const TargetEvaluation e = run_alone("crowd-on-off", 17, 100);
   EXPECT_EQ(e.misidentified, 0u);
   EXPECT_LT(e.position_m.max, 0.05);

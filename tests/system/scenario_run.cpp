@@ -148,18 +148,10 @@ tl::expected<ScenarioRun, std::string> run_scenario(const sim::Scenario& scenari
   });
   if (!localized) return tl::unexpected(localized.error().what());
   if (localized->skipped > 0) return tl::unexpected(std::to_string(localized->skipped) + " frames could not be localized");
-  // The simulation knows the free-running boards' clocks, b(t) = offset + t (1 + ppm 1e-6)
-  // (board_clock.hpp): coverage then counts the frames whose markers are truly lit.
+  // The simulation knows the free-running boards' clocks: coverage then counts the
+  // frames whose markers are truly lit.
   EvaluationOptions evaluation_options;
-  const Timebase& timebase = scenario.targets.timebase;
-  for (size_t t = 0; t < scenario.simulation.size() && t < scenario.targets.targets.size(); ++t) {
-    const sim::BoardClockSpec& c = scenario.simulation[t].clock;
-    if (!c.free_running) continue;
-    const double rate = 1.0 + c.drift_ppm * 1e-6;
-    const double origin = double(timebase.epoch_ns - c.offset_ns) / rate;
-    evaluation_options.board_clocks[scenario.targets.targets[t].id] =
-        CodeClock{int64_t(std::llround(origin)), timebase.bit_period_ns, rate};
-  }
+  evaluation_options.board_clocks = sim::free_running_code_clocks(scenario);
   auto evaluation = evaluate_poses(*dataset, run.poses, "poses", evaluation_options);
   if (!evaluation) return tl::unexpected(evaluation.error().what());
   run.evaluation = *evaluation;

@@ -8,11 +8,13 @@
 // file says _s), radians (degrees in files, where the field name says _deg).
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "tetrapulse/localizer/camera_model.hpp"
+#include "tetrapulse/localizer/code_clock.hpp"
 #include "tetrapulse/localizer/targets.hpp"
 #include "tetrapulse/sim/board_clock.hpp"
 #include "tetrapulse/sim/flicker_emitter.hpp"
@@ -80,5 +82,10 @@ struct Scenario {
   double ambient = 0.3;
   std::string source_text;  // the YAML it was read from
 };
+
+// The bit clocks (code_clock.hpp) of the scenario's free-running boards, by target
+// id, from b(t) = offset + t (1 + ppm 1e-6) (board_clock.hpp): what an evaluation
+// needs to count the frames whose markers are truly lit. Synchronized boards: none.
+std::map<int, CodeClock> free_running_code_clocks(const Scenario& scenario);
 
 }  // namespace tetrapulse::sim
