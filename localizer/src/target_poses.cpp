@@ -142,12 +142,21 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
   MarkerPoseOptions pose_options = options.pose;
   pose_options.sphere_centroid = options.pose.sphere_centroid && centroids->sphere();
   pose_options.max_rms_px = std::clamp(4 * tt.typical_rms_px, kMinRmsGatePx, options.pose.max_rms_px);
+  // In the frame it is identified its own noise is not known yet, only the fit that
+  // identified it: its four markers then fit within 4x the rig's noise, else it
+  // waits a frame — no three of them either, as the seed they would be chosen by
+  // holds the stray blob too (identified as two drones cross, one blob pulled by
+  // the other's marker fitted at 0.53 px and gave a first pose 178 mm off, its best
+  // three 214 mm; the next frame fitted at 0.001 px).
+  const std::optional<double> rig_rms = tt.seed && mid == tt.last_pose_ns ? roster->rig_rms_px(t) : std::nullopt;
+  if (rig_rms) pose_options.max_rms_px = std::min(pose_options.max_rms_px, std::max(kMinRmsGatePx, 4 * *rig_rms));
   if (f.frame_period_ns > 0) {
     const double frames = double(mid - tt.last_pose_ns) / double(f.frame_period_ns);
     pose_options.max_prediction_distance *= std::max(1.0, 1 + 0.5 * (frames - 1));
   }
   const double since = f.frame_period_ns > 0 ? double(mid - tt.last_pose_ns) / double(f.frame_period_ns) : 1.0;
   auto solved = solve(f, target, tt, pose_options, &markers);
+  if (rig_rms && solved && solved->outlier >= 0) solved.reset();
   // A pose of fewer than four confirmed markers rests on the prediction: it must
   // agree with it, unless the dark marker's own track picked its root.
   const bool rests_on_prediction =
@@ -175,6 +184,7 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
   }
   if (solved->used.size() == 4 && markers.unconfirmed.empty() && markers.evidence.merged.empty()) {
     tt.typical_rms_px = std::max(0.05, 0.8 * tt.typical_rms_px + 0.2 * solved->rms_px);
+    ++tt.clean_poses;
     centroids->weigh(f.camera, target, markers.confirmed, solved->pose, solved->rms_px, options.pose.centroid_sigma_px);
   }
   const bool four_fit = solved->used.size() == 4 && markers.evidence.merged.empty();

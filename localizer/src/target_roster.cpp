@@ -1,6 +1,7 @@
 #include "target_roster.hpp"
 
 #include <algorithm>
+#include <vector>
 
 #include "tetrapulse/localizer/target_appearance.hpp"
 
@@ -20,6 +21,7 @@ void TrackedTarget::identify(const std::array<int64_t, 4>& tracks, const CodeClo
   prediction_error_rad = 0.1;
   prediction_error_rel = 0.1;
   typical_rms_px = std::clamp(rms_px, 0.05, 0.5);
+  clean_poses = 0;
 }
 
 void TrackedTarget::forget() {
@@ -85,6 +87,16 @@ bool TargetRoster::project_marker(size_t t, int m, Eigen::Vector2d* px, double* 
   if (!camera_.project(p, px)) return false;
   if (radius_px) *radius_px = camera_.info().fx * target.marker_diameter_m / 2 / p.norm();
   return true;
+}
+
+std::optional<double> TargetRoster::rig_rms_px(size_t t) const {
+  std::vector<double> settled;
+  for (size_t i = 0; i < tracked_.size(); ++i)
+    if (i != t && tracked_[i].identified && tracked_[i].clean_poses >= kSettledPoses)
+      settled.push_back(tracked_[i].typical_rms_px);
+  if (settled.empty()) return std::nullopt;
+  std::nth_element(settled.begin(), settled.begin() + long(settled.size() / 2), settled.end());
+  return settled[settled.size() / 2];
 }
 
 double TargetRoster::roi_radius(size_t t, int64_t mid_ns, int64_t frame_period_ns) const {

@@ -54,6 +54,7 @@ struct TrackedTarget {
   // times worse holds a marker that is not where it seems (a blob merged with
   // another light, a stray track).
   double typical_rms_px = 0.5;
+  int clean_poses = 0;  // poses of four confirmed, unmerged markers since identified
   TargetClock clock;
 
   // Identified by `clock` and `pose` (fitting its four markers with RMS `rms_px`)
@@ -99,6 +100,10 @@ class TargetRoster {
   // recent error, growing while no pose comes (extrapolating further, the
   // regression's error grows with the acceleration). frame_period_ns 0: unknown yet.
   double roi_radius(size_t t, int64_t mid_ns, int64_t frame_period_ns) const;
+  // The rig's centroid noise: the median typical_rms_px of the identified targets
+  // with at least kSettledPoses clean poses, other than `t`; none without one.
+  std::optional<double> rig_rms_px(size_t t) const;
+  static constexpr int kSettledPoses = 3;
 
  private:
   const CameraModel& camera_;

@@ -59,14 +59,17 @@ struct OpenRow {
   const char* scenario;
   double min_coverage;       // today's coverage, rounded down
   size_t max_misidentified;  // today's count
+  double max_position_m;     // the largest position error today, rounded up
   const char* open;          // which acceptance line it misses
 };
 
 const OpenRow kOpenRows[] = {
-    {"crowd", 0.98, 0, "coverage 98.7 %, identification latency 27 frames (bound 12)"},
-    {"crowd-on-off", 0.99, 0, "identification latency 39 frames (bound 12): one drone identified late"},
+    // The crowds' largest errors were first poses fitted with a blob pulled by
+    // another drone's marker (179 and 220 mm at 600 frames; target_poses.cpp).
+    {"crowd", 0.98, 0, 0.06, "coverage 98.9 %, identification latency 29 frames (bound 12)"},
+    {"crowd-on-off", 0.99, 0, 0.06, "identification latency 42 frames (bound 12): one drone identified late"},
     // Issue 19: the climbing robot's 150-degree colour view; one robot's balls touch at first.
-    {"climb-colour", 0.99, 0, "identification latency 13 frames (geometry bound 2)"},
+    {"climb-colour", 0.99, 0, INFINITY, "identification latency 13 frames (geometry bound 2)"},
 };
 
 // Frequency codes (square waves, protocol/SPEC.md 8.5) are seen at their apparent
@@ -191,13 +194,14 @@ TEST_P(OpenScenarios, HoldWhatTheyReachToday) {
   ASSERT_TRUE(run) << run.error();
   const TargetEvaluation& all = run->evaluation.overall;
   std::printf("%s (open: %s): %zu frames, %zu poses; mean error %.2f mm / %.3f deg; coverage %.4f (%zu of %zu); "
-              "misidentified %zu; max latency %lld frames\n",
+              "misidentified %zu; max latency %lld frames; largest error %.1f mm\n",
               r.scenario, r.open, run->frames.size(), all.rows, 1e3 * all.position_m.mean,
               all.orientation_rad.mean / kDeg, all.coverage(), all.covered_frames, all.visible_frames,
-              all.misidentified, (long long)all.max_latency_frames);
+              all.misidentified, (long long)all.max_latency_frames, 1e3 * all.position_m.max);
   EXPECT_GT(all.visible_frames_total, 0u) << "no target visible: the scenario tests nothing";
   EXPECT_GE(all.coverage(), r.min_coverage);
   EXPECT_LE(all.misidentified, r.max_misidentified);
+  EXPECT_LE(all.position_m.max, r.max_position_m);
 }
 
 INSTANTIATE_TEST_SUITE_P(Open, OpenScenarios, ::testing::ValuesIn(kOpenRows), test_name<OpenRow>);
