@@ -134,6 +134,16 @@ std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& ta
     if (best >= 0 && near_prediction(best) && !(explained > 0 && light_of[size_t(best)] < 0)) chosen = best;
   }
   if (chosen < 0 || (prediction && !near_prediction(chosen))) return std::nullopt;
+  // A lit fourth marker the root puts on one of the three blobs: that blob may hold
+  // both (touching balls, a marker behind its neighbour), its centroid neither's.
+  if (lit_marker >= 0) {
+    const Eigen::Vector3d p = poses[size_t(chosen)].apply(target.markers[size_t(lit_marker)].position_m);
+    Eigen::Vector2d px;
+    const double reach = 1.5 * camera.info().fx * target.marker_diameter_m / p.norm() + 1.0;
+    if (camera.project(p, &px))
+      for (const SeenMarker& s : seen)
+        if ((s.pixel - px).norm() <= reach) return std::nullopt;
+  }
   auto out = refine(camera, target, seen, poses[size_t(chosen)], PoseStatus::kThreeMarkers, options);
   if (!out || !(out->rms_px <= options.max_rms_px)) return std::nullopt;
   out->hinted = by_hint;

@@ -21,7 +21,9 @@
 //                unless a farther root near the prediction is the one the
 //                fourth marker's light explains (then the ambiguity stands);
 //              every root taken must lie within max_prediction_distance of the
-//              prediction. Then refined: status kThreeMarkers (`hinted` when
+//              prediction, and must not put a lit fourth marker on one of the
+//              three blobs (within 1.5 of its image diameters + 1 px: that blob
+//              may hold both, its centroid neither's). Then refined: status kThreeMarkers (`hinted` when
 //              the hint picked the root). Without a prediction only a hint picks
 //              a root; an unresolved ambiguity gives no pose.
 // A pose is returned only when its RMS reprojection error is at most
