@@ -1,7 +1,9 @@
 #pragma once
 // Internal to Localizer, stage 7 of a frame: each identified target's pose from
 // its markers seen this frame (marker_pose.hpp), started from its predicted pose
-// — in the frame it is identified, the identification's refined pose.
+// — in the frame it is identified, the identification's refined pose; that frame's
+// pose must fit within 4x the rig's centroid noise (TargetRoster::rig_rms_px),
+// with no three markers standing in, else the first pose waits a frame.
 //   - Four markers seen: one pose of all four, or (one not fitting) of three.
 //   - A marker whose track is not confirmed yet (target_roster.hpp) takes part
 //     only in a pose of all four that it fits (two such fits confirm it); else
