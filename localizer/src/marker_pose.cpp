@@ -102,13 +102,19 @@ std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& ta
   int lit_marker = -1;
   for (const MissingMarker& m : evidence.missing)
     if (m.light == MarkerLight::kLit) lit_marker = m.marker;
+  // Where root k puts the lit fourth marker, and that marker's image diameter (px).
+  const auto lit_pixel = [&](int k, Eigen::Vector2d* px, double* diameter_px) {
+    const Eigen::Vector3d p = poses[size_t(k)].apply(target.markers[size_t(lit_marker)].position_m);
+    *diameter_px = camera.info().fx * target.marker_diameter_m / p.norm();
+    return camera.project(p, px);
+  };
   if (lit_marker >= 0 && prediction) {
     for (int k = 0; k < n; ++k) {
       if (!near_prediction(k)) continue;
-      const Eigen::Vector3d p = poses[size_t(k)].apply(target.markers[size_t(lit_marker)].position_m);
       Eigen::Vector2d px;
-      if (!camera.project(p, &px)) continue;
-      const double reach = std::max(3.0, camera.info().fx * target.marker_diameter_m / 2 / p.norm() + 1.0);
+      double diameter = 0;
+      if (!lit_pixel(k, &px, &diameter)) continue;
+      const double reach = std::max(3.0, diameter / 2 + 1.0);
       for (size_t b = 0; b < evidence.lights.size(); ++b)
         if ((evidence.lights[b] - px).norm() <= reach) light_of[size_t(k)] = int(b);
       if (light_of[size_t(k)] >= 0) ++explained, explained_root = k;
@@ -137,12 +143,11 @@ std::optional<MarkerPose> from_three(const CameraModel& camera, const Target& ta
   // A lit fourth marker the root puts on one of the three blobs: that blob may hold
   // both (touching balls, a marker behind its neighbour), its centroid neither's.
   if (lit_marker >= 0) {
-    const Eigen::Vector3d p = poses[size_t(chosen)].apply(target.markers[size_t(lit_marker)].position_m);
     Eigen::Vector2d px;
-    const double reach = 1.5 * camera.info().fx * target.marker_diameter_m / p.norm() + 1.0;
-    if (camera.project(p, &px))
+    double diameter = 0;
+    if (lit_pixel(chosen, &px, &diameter))
       for (const SeenMarker& s : seen)
-        if ((s.pixel - px).norm() <= reach) return std::nullopt;
+        if ((s.pixel - px).norm() <= 1.5 * diameter + 1.0) return std::nullopt;
   }
   auto out = refine(camera, target, seen, poses[size_t(chosen)], PoseStatus::kThreeMarkers, options);
   if (!out || !(out->rms_px <= options.max_rms_px)) return std::nullopt;

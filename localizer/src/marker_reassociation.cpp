@@ -31,10 +31,11 @@ std::optional<Reassociation> reassociate(const PoseFrame& f, size_t t, const Tar
   for (const BlobTrack& track : f.tracker.tracks()) {
     const TrackSample& newest = track.history().newest();
     if (newest.frame != f.stamp.frame || !newest.detected || newest.merged) continue;
-    if (const auto o = roster.owner(track.id()); o && o->target != t) continue;
     double reach = std::numeric_limits<double>::infinity();
     for (const Eigen::Vector2d& p : predicted) reach = std::min(reach, (newest.centroid - p).norm());
-    if (reach <= kReachPx) candidates.push_back(Candidate{track.id(), newest.centroid, reach});
+    if (reach > kReachPx) continue;
+    if (const auto o = roster.owner(track.id()); o && o->target != t) continue;  // after the cheap test
+    candidates.push_back(Candidate{track.id(), newest.centroid, reach});
   }
   if (candidates.size() < 4) return std::nullopt;
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.reach < b.reach; });
@@ -45,13 +46,12 @@ std::optional<Reassociation> reassociate(const PoseFrame& f, size_t t, const Tar
   const int n = int(candidates.size());
   std::array<int, 4> pick{};
   for (pick[0] = 0; pick[0] < n; ++pick[0])
-    for (pick[1] = 0; pick[1] < n; ++pick[1])
-      for (pick[2] = 0; pick[2] < n; ++pick[2])
+    for (pick[1] = 0; pick[1] < n; ++pick[1]) {
+      if (pick[1] == pick[0]) continue;
+      for (pick[2] = 0; pick[2] < n; ++pick[2]) {
+        if (pick[2] == pick[0] || pick[2] == pick[1]) continue;
         for (pick[3] = 0; pick[3] < n; ++pick[3]) {
-          bool distinct = true;
-          for (size_t i = 0; i < 4 && distinct; ++i)
-            for (size_t j = i + 1; j < 4; ++j) distinct = distinct && pick[i] != pick[j];
-          if (!distinct) continue;
+          if (pick[3] == pick[0] || pick[3] == pick[1] || pick[3] == pick[2]) continue;
           Eigen::Vector2d mean = Eigen::Vector2d::Zero();
           for (size_t m = 0; m < 4; ++m) mean += candidates[size_t(pick[m])].pixel - predicted[m];
           mean /= 4;
@@ -70,6 +70,8 @@ std::optional<Reassociation> reassociate(const PoseFrame& f, size_t t, const Tar
           for (size_t m = 0; m < 4; ++m) found->tracks[m] = candidates[size_t(pick[m])].track;
           found->pose = *pose;
         }
+      }
+    }
   return found;
 }
 
