@@ -14,6 +14,17 @@ const char* blob_origin_name(BlobOrigin origin) {
   return "?";
 }
 
+bool cut_by_border(const Blob& blob, int width, int height) {
+  if (blob.origin == BlobOrigin::kCircleFit) return false;
+  const cv::Rect& b = blob.bbox;
+  const auto within = [&](int d) { return b.x <= d || b.y <= d || b.x + b.width >= width - d || b.y + b.height >= height - d; };
+  // Its region on the border's pixels: the light beyond them is lost. A part
+  // recovery grew (dim seeds, erosion) whose ring of pixels lies on them is what
+  // the border left of a larger blob.
+  const bool part = blob.origin == BlobOrigin::kDimRecovery || blob.origin == BlobOrigin::kErosionSplit;
+  return within(0) || (part && within(1));
+}
+
 const char* reject_reason_name(RejectReason reason) {
   switch (reason) {
     case RejectReason::kTooSmall: return "too_small";

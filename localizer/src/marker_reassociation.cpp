@@ -31,6 +31,7 @@ std::optional<Reassociation> reassociate(const PoseFrame& f, size_t t, const Tar
   for (const BlobTrack& track : f.tracker.tracks()) {
     const TrackSample& newest = track.history().newest();
     if (newest.frame != f.stamp.frame || !newest.detected || newest.merged) continue;
+    if (cut_by_border(track.last_blob(), f.camera.width(), f.camera.height())) continue;
     double reach = std::numeric_limits<double>::infinity();
     for (const Eigen::Vector2d& p : predicted) reach = std::min(reach, (newest.centroid - p).norm());
     if (reach > kReachPx) continue;

@@ -4,7 +4,10 @@ namespace tetrapulse::localizer_internal {
 
 NewTargets::NewTargets(const CameraModel& camera, const TargetsFile& targets, const IdentificationOptions& options,
                        bool frequency_coded)
-    : identifier_(camera, targets, options), frequency_coded_(frequency_coded) {}
+    : identifier_(camera, targets, options),
+      frequency_coded_(frequency_coded),
+      camera_width_(camera.width()),
+      camera_height_(camera.height()) {}
 
 std::vector<size_t> NewTargets::identify(const BlobTracker& tracker, CodeReading& reading, const ExposureStamp& stamp,
                                          TargetRoster* roster) {
@@ -22,7 +25,7 @@ std::vector<size_t> NewTargets::identify(const BlobTracker& tracker, CodeReading
     const TrackSample& newest = track.history().newest();
     const bool seen = newest.frame == stamp.frame && newest.detected;
     c.pixel = seen ? newest.centroid : track.predict(stamp.middle_ns());
-    c.measured = seen && !newest.merged;
+    c.measured = seen && !newest.merged && !cut_by_border(track.last_blob(), camera_width_, camera_height_);
     c.radius_px = track.last_blob().radius;
     c.look = track.last_blob().look;
     if (frequency_coded_) c.frequency_code = reading.frequency_code(track.id());

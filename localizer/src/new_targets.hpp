@@ -25,6 +25,7 @@ class NewTargets {
  private:
   TargetIdentifier identifier_;
   bool frequency_coded_;
+  int camera_width_, camera_height_;  // pixels
   std::vector<CandidateTrack> candidates_;
 };
 

@@ -42,7 +42,15 @@ FrameMarkers markers_of(const PoseFrame& f, size_t t, const std::array<int, 4>& 
     const bool confirmed = tt.confirmed[size_t(m)];
     if (track) {
       const TrackSample& newest = track->history().newest();
-      if (newest.frame == f.stamp.frame && newest.detected) {
+      const bool seen = newest.frame == f.stamp.frame && newest.detected;
+      if (seen && cut_by_border(track->last_blob(), f.camera.width(), f.camera.height())) {
+        // Its light is partly outside the image: not a measurement of its centre,
+        // and no evidence either way of where the pose puts it.
+        out.evidence.missing.push_back(MissingMarker{m, MarkerLight::kUnknown});
+        seen_track[size_t(m)] = track->id();
+        continue;
+      }
+      if (seen) {
         if (newest.merged && confirmed) {
           out.merged.emplace_back(m, newest);
         } else {
@@ -155,6 +163,12 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
     pose_options.max_prediction_distance *= std::max(1.0, 1 + 0.5 * (frames - 1));
   }
   const double since = f.frame_period_ns > 0 ? double(mid - tt.last_pose_ns) / double(f.frame_period_ns) : 1.0;
+  // Whether a fourth blob of this target should be in view: a marker on a track not
+  // confirmed yet, or one whose code lights it now.
+  const bool fourth_expected =
+      !markers.unconfirmed.empty() ||
+      std::any_of(markers.evidence.missing.begin(), markers.evidence.missing.end(),
+                  [](const MissingMarker& m) { return m.light == MarkerLight::kLit; });
   auto solved = solve(f, target, tt, pose_options, &markers);
   if (rig_rms && solved && solved->outlier >= 0) solved.reset();
   // A pose of fewer than four confirmed markers rests on the prediction: it must
@@ -162,9 +176,13 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
   const bool rests_on_prediction =
       solved && (solved->status == PoseStatus::kThreeMarkers || markers.confirmed.size() < 4);
   if (rests_on_prediction && !solved->hinted && !agrees_with_prediction(tt, solved->pose, since)) solved.reset();
-  if (!solved) {
+  if (!solved || (solved->used.size() < 4 && fourth_expected)) {
     // Its tracks may have taken each other's blobs: the one assignment of the blobs
     // around it that fits (marker_reassociation.hpp) gives the pose and the tracks.
+    // Also when three markers posed it while a fourth was in sight: as two touching
+    // balls part, the track of one can follow the other's blob, and the three then
+    // fit exactly (P3P) a pose that drifts away frame by frame while the fourth blob
+    // is left to an unconfirmed track (climb-colour seed 41: 26 rows to 66 degrees).
     if (auto found = reassociate(f, t, *roster, pose_options, kMaxReassociationDistance)) {
       for (int m = 0; m < 4; ++m) {
         if (tt.track_of[size_t(m)] == found->tracks[size_t(m)]) continue;

@@ -265,6 +265,39 @@ TEST(BlobExtractor, FindsAMarkerCutByTheImageBorderByCircleFit) {
   EXPECT_LT((out.blobs[0].centroid - c).norm(), 0.3);
 }
 
+TEST(BlobExtractor, ABlobWhoseLightReachesTheBorderUncentredIsCutByIt) {
+  // A marker centred 1 px below the top edge loses its upper part: the centroid
+  // of what is left sits lower; a circle fit centres it, and then it is whole.
+  auto img = canvas(100, 80, 15);
+  const Eigen::Vector2d c(50.3, 1.0);
+  add_disc(&img, c, 6, 170);
+  BlobExtractorConfig config;
+  config.refit_clipped = false;
+  const auto uncentred = extract(quantise(img, CV_8U), 1, config);
+  ASSERT_EQ(uncentred.blobs.size(), 1u);
+  EXPECT_GT(uncentred.blobs[0].centroid.y() - c.y(), 1.0);
+  EXPECT_TRUE(cut_by_border(uncentred.blobs[0], 100, 80));
+  Blob fitted = uncentred.blobs[0];
+  fitted.origin = BlobOrigin::kCircleFit;
+  EXPECT_FALSE(cut_by_border(fitted, 100, 80));
+  // On the border's pixels: cut; one pixel inside (its ring on them), whole,
+  // unless recovery grew it from what the border left; two pixels inside, whole.
+  Blob near;
+  for (const auto& [box, cut] : {std::pair{cv::Rect(0, 30, 8, 8), true}, std::pair{cv::Rect(1, 30, 8, 8), false},
+                                 std::pair{cv::Rect(92, 30, 8, 8), true}, std::pair{cv::Rect(91, 30, 8, 8), false},
+                                 std::pair{cv::Rect(40, 72, 8, 8), true}, std::pair{cv::Rect(40, 71, 8, 8), false},
+                                 std::pair{cv::Rect(40, 0, 8, 8), true}, std::pair{cv::Rect(40, 1, 8, 8), false}}) {
+    near.bbox = box;
+    near.origin = BlobOrigin::kThreshold;
+    EXPECT_EQ(cut_by_border(near, 100, 80), cut) << box;
+    near.origin = BlobOrigin::kDimRecovery;
+    const bool ring_on_border = box.x <= 1 || box.y <= 1 || box.br().x >= 99 || box.br().y >= 79;
+    EXPECT_EQ(cut_by_border(near, 100, 80), ring_on_border) << box;
+  }
+  near.bbox = cv::Rect(2, 30, 8, 8);
+  EXPECT_FALSE(cut_by_border(near, 100, 80));
+}
+
 TEST(BlobExtractor, RecoversADimMarkerBelowOtsu) {
   auto img = canvas(160, 120, 20);
   const Eigen::Vector2d bright1(40.2, 40.3), bright2(120.6, 40.1), dim(80.4, 90.7);

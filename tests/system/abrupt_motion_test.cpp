@@ -15,25 +15,11 @@
 namespace tetrapulse::system_testing {
 namespace {
 
-// `scenario` with only its target `id` (its markers and how it is simulated).
-sim::Scenario alone(sim::Scenario scenario, int id) {
-  std::vector<Target> targets;
-  std::vector<sim::TargetSimulation> simulation;
-  for (size_t t = 0; t < scenario.targets.targets.size(); ++t)
-    if (scenario.targets.targets[t].id == id) {
-      targets.push_back(scenario.targets.targets[t]);
-      simulation.push_back(scenario.simulation[t]);
-    }
-  scenario.targets.targets = targets;
-  scenario.simulation = simulation;
-  return scenario;
-}
-
 TargetEvaluation run_alone(const char* name, int id, int64_t frames) {
   auto scenario = sim::load_scenario(name);
   EXPECT_TRUE(scenario) << scenario.error().what();
   if (!scenario) return {};
-  const auto run = run_scenario(alone(*scenario, id), scenario->seed, frames);
+  const auto run = run_scenario(only_targets(*scenario, {id}), scenario->seed, frames);
   EXPECT_TRUE(run) << run.error();
   if (!run) return {};
   const TargetEvaluation& all = run->evaluation.overall;

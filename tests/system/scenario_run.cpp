@@ -194,6 +194,19 @@ tl::expected<ScenarioRun, std::string> run_scenario(const sim::Scenario& scenari
   return run;
 }
 
+sim::Scenario only_targets(sim::Scenario scenario, const std::vector<int>& ids) {
+  std::vector<Target> targets;
+  std::vector<sim::TargetSimulation> simulation;
+  for (size_t t = 0; t < scenario.targets.targets.size(); ++t)
+    if (std::find(ids.begin(), ids.end(), scenario.targets.targets[t].id) != ids.end()) {
+      targets.push_back(scenario.targets.targets[t]);
+      simulation.push_back(scenario.simulation[t]);
+    }
+  scenario.targets.targets = targets;
+  scenario.simulation = simulation;
+  return scenario;
+}
+
 OracleComparison compare_with_oracle(const ScenarioRun& run) {
   OracleComparison c;
   for (const auto& [key, mine] : run.localizer_errors) {

@@ -47,6 +47,10 @@ struct ScenarioRun {
 tl::expected<ScenarioRun, std::string> run_scenario(const sim::Scenario& scenario, uint64_t seed, int64_t frames,
                                                     const LocalizerOptions& options = {});
 
+// `scenario` with only the targets whose id is in `ids` (their markers and how
+// they are simulated), in the scenario's order.
+sim::Scenario only_targets(sim::Scenario scenario, const std::vector<int>& ids);
+
 // Mean errors of the localizer and the oracle over the (frame, target) pairs both reported.
 struct OracleComparison {
   size_t pairs = 0;

@@ -60,6 +60,14 @@ struct Blob {
   BlobOrigin origin = BlobOrigin::kThreshold;
 };
 
+// Whether the blob's centroid is no measurement of its light's centre because the
+// border of a width x height image cut it, and no circle fit centred it: its
+// region lies on the border's pixels, or it is a part grown by recovery whose ring
+// (the pixels around it its centroid sums) lies on them (a marker centred 7 px
+// above the image imaged as a 2 x 5 px fragment on rows 1-5 whose centroid lay
+// 9 px off; a pose through it was 357 mm off).
+bool cut_by_border(const Blob& blob, int width, int height);
+
 enum class RejectReason : uint8_t {
   kTooSmall,   // area < min_area
   kTooLarge,   // area > max_area
