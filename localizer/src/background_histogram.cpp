@@ -109,16 +109,31 @@ BackgroundFit BackgroundHistogram::fit_background(double saturation) const {
   const bool clipped_top = below >= 0 && (bin_centre(top) >= saturation - 0.5 * bin_width() ||
                                           (bins_[top] >= 4 && bins_[top] >= 4 * bins_[below]));
   const int mode_end = clipped_top ? below + 1 : n;
+  // The mode and its width are read where bins hold enough pixels to have a peak:
+  // deep data in a small window spreads its noise over more values than it has
+  // pixels for (16 bits, sigma 58, a 26 x 26 ROI: a pixel or two per value), and
+  // the tallest single bin is a spike of noise whose width is one bin (sigma 0.55
+  // for 58, and noise taken for a marker). Neighbouring bins are merged, 2, 4, 8...
+  // at a time, until the tallest merged bin holds max(8, 1/32 of the pixels).
+  const uint32_t enough = std::max<uint32_t>(8, total_ / 32);
+  int merge = 1;
+  std::vector<uint32_t>& merged = merged_;
+  for (;; merge *= 2) {
+    merged.assign(size_t((mode_end + merge - 1) / merge), 0);
+    for (int b = 0; b < mode_end; ++b) merged[size_t(b / merge)] += bins_[b];
+    if (merge >= mode_end || *std::max_element(merged.begin(), merged.end()) >= enough) break;
+  }
+  const int coarse = int(merged.size());
   int mode = 0;
-  for (int b = 1; b < mode_end; ++b)
-    if (bins_[b] > bins_[mode]) mode = b;
+  for (int b = 1; b < coarse; ++b)
+    if (merged[size_t(b)] > merged[size_t(mode)]) mode = b;
   // Initial sigma from the full width at half maximum.
-  const double half = bins_[mode] * 0.5;
+  const double half = merged[size_t(mode)] * 0.5;
   int lo = mode, hi = mode;
-  while (lo > 0 && bins_[lo - 1] >= half) --lo;
-  while (hi + 1 < n && bins_[hi + 1] >= half) ++hi;
-  double mean = mode;
-  double sigma = std::max((hi - lo + 1) / 2.3548, 0.5);
+  while (lo > 0 && merged[size_t(lo - 1)] >= half) --lo;
+  while (hi + 1 < coarse && merged[size_t(hi + 1)] >= half) ++hi;
+  double mean = (mode + 0.5) * merge - 0.5;
+  double sigma = std::max((hi - lo + 1) * merge / 2.3548, 0.5);
   // 3-sigma clipping. A normal truncated at +-3 sigma keeps 0.97334 of its
   // variance; binning adds 1/12 bin^2 (Sheppard).
   for (int iter = 0; iter < 20; ++iter) {

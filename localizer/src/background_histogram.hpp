@@ -21,7 +21,8 @@ class BackgroundHistogram {
   void count(const cv::Mat& image, cv::Rect window);
 
   // Gaussian fitted to the background peak: starts at the histogram's mode with
-  // sigma from its half-maximum width, then re-estimates mean and sigma from
+  // sigma from its half-maximum width (both read with neighbouring bins merged
+  // until the tallest holds enough pixels to be a peak), then re-estimates mean and sigma from
   // the bins within 3 sigma (truncation and bin-width corrected) until stable.
   // The foreground, far in one tail, does not enter. Nor do clipped pixels: a
   // saturated marker larger than the background's share of the window piles up
@@ -45,6 +46,7 @@ class BackgroundHistogram {
   std::vector<uint32_t> bins_;
   std::vector<uint32_t> partial_;  // 4 interleaved 8-bit histograms (fewer store-to-load stalls)
   std::vector<uint32_t> full_;     // every 16-bit value (large windows)
+  mutable std::vector<uint32_t> merged_;  // fit_background's scratch: neighbouring bins merged
   int used_ = 0;                   // bins in use
   int shift_ = 0;
   int quantum_ = 1;  // step between the values the data holds (16-bit data from a 10- or 12-bit sensor)
