@@ -116,22 +116,28 @@ BackgroundFit BackgroundHistogram::fit_background(double saturation) const {
   // for 58, and noise taken for a marker). Neighbouring bins are merged, 2, 4, 8...
   // at a time, until the tallest merged bin holds max(8, 1/32 of the pixels).
   const uint32_t enough = std::max<uint32_t>(8, total_ / 32);
-  int merge = 1;
-  std::vector<uint32_t>& merged = merged_;
-  for (;; merge *= 2) {
-    merged.assign(size_t((mode_end + merge - 1) / merge), 0);
-    for (int b = 0; b < mode_end; ++b) merged[size_t(b / merge)] += bins_[b];
-    if (merge >= mode_end || *std::max_element(merged.begin(), merged.end()) >= enough) break;
+  const auto mode_of = [](const uint32_t* h, int size) {
+    int mode = 0;
+    for (int b = 1; b < size; ++b)
+      if (h[b] > h[mode]) mode = b;
+    return mode;
+  };
+  const uint32_t* h = bins_.data();
+  int coarse = mode_end, merge = 1;
+  int mode = mode_of(h, coarse);
+  while (h[mode] < enough && merge < mode_end) {
+    merge *= 2;
+    coarse = (mode_end + merge - 1) / merge;
+    merged_.assign(size_t(coarse), 0);
+    for (int b = 0; b < mode_end; ++b) merged_[size_t(b / merge)] += bins_[size_t(b)];
+    h = merged_.data();
+    mode = mode_of(h, coarse);
   }
-  const int coarse = int(merged.size());
-  int mode = 0;
-  for (int b = 1; b < coarse; ++b)
-    if (merged[size_t(b)] > merged[size_t(mode)]) mode = b;
   // Initial sigma from the full width at half maximum.
-  const double half = merged[size_t(mode)] * 0.5;
+  const double half = h[mode] * 0.5;
   int lo = mode, hi = mode;
-  while (lo > 0 && merged[size_t(lo - 1)] >= half) --lo;
-  while (hi + 1 < coarse && merged[size_t(hi + 1)] >= half) ++hi;
+  while (lo > 0 && h[lo - 1] >= half) --lo;
+  while (hi + 1 < coarse && h[hi + 1] >= half) ++hi;
   double mean = (mode + 0.5) * merge - 0.5;
   double sigma = std::max((hi - lo + 1) * merge / 2.3548, 0.5);
   // 3-sigma clipping. A normal truncated at +-3 sigma keeps 0.97334 of its
