@@ -125,11 +125,14 @@ BackgroundFit BackgroundHistogram::fit_background(double saturation) const {
   const uint32_t* h = bins_.data();
   int coarse = mode_end, merge = 1;
   int mode = mode_of(h, coarse);
+  if (h[mode] < enough) merged_.assign(bins_.begin(), bins_.begin() + mode_end);
   while (h[mode] < enough && merge < mode_end) {
+    // Pairs of the previous level, in place.
     merge *= 2;
-    coarse = (mode_end + merge - 1) / merge;
-    merged_.assign(size_t(coarse), 0);
-    for (int b = 0; b < mode_end; ++b) merged_[size_t(b / merge)] += bins_[size_t(b)];
+    const int finer = coarse;
+    coarse = (finer + 1) / 2;
+    for (int b = 0; b < coarse; ++b)
+      merged_[size_t(b)] = merged_[size_t(2 * b)] + (2 * b + 1 < finer ? merged_[size_t(2 * b + 1)] : 0);
     h = merged_.data();
     mode = mode_of(h, coarse);
   }

@@ -22,8 +22,9 @@ class BackgroundHistogram {
 
   // Gaussian fitted to the background peak: starts at the histogram's mode with
   // sigma from its half-maximum width (both read with neighbouring bins merged
-  // until the tallest holds enough pixels to be a peak), then re-estimates mean and sigma from
-  // the bins within 3 sigma (truncation and bin-width corrected) until stable.
+  // until the tallest holds enough pixels to be a peak), then re-estimates mean
+  // and sigma from the bins within 3 sigma (truncation and bin-width corrected)
+  // until stable.
   // The foreground, far in one tail, does not enter. Nor do clipped pixels: a
   // saturated marker larger than the background's share of the window piles up
   // in one bin, the tallest, yet it is no background. The mode is sought below
