@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
 
 namespace tetrapulse::blob_internal {
 namespace {
@@ -35,6 +36,73 @@ int label_parts(const std::vector<uint8_t>& mask, int w, int h, std::vector<int3
 
 }  // namespace
 
+template <typename T>
+void BlobRecovery::flood_from(const cv::Mat& work, double background, double sigma, double saturation,
+                              const RegionGrower& grower, const Region& region, const std::vector<int>& seeds,
+                              const std::vector<Eigen::Vector2d>& centres) {
+  // Distinct seeds only; otherwise the nearest-centre parts stand.
+  for (size_t a = 0; a < seeds.size(); ++a)
+    for (size_t b = a + 1; b < seeds.size(); ++b)
+      if (seeds[a] < 0 || seeds[a] == seeds[b]) return;
+  const cv::Rect box = region.sums.bbox;
+  if (box.width > kMaxCropSide || box.height > kMaxCropSide || box.area() <= 0) return;
+  const int width = grower.width();
+  const int n = region.end - region.begin;
+  // The crop's cells: the region's pixel index (from begin) or -1.
+  cell_.assign(size_t(box.area()), -1);
+  for (int i = 0; i < n; ++i) {
+    const int p = grower.pixels()[size_t(region.begin + i)], y = p / width, x = p - y * width;
+    cell_[size_t((y - box.y) * box.width + (x - box.x))] = i;
+  }
+  // Flooding from the seeds, brightest pixel first: each part grows down its own
+  // slope, and the parts meet at the valley between the lights, not where the
+  // centres' bisector happens to cut. A pixel goes to the part that reaches it at
+  // the highest level; at one level (a plateau) to the part whose centre is
+  // nearer.
+  struct Entry {
+    double value;
+    double distance;  // from the pixel to its part's centre
+    int pixel;
+    int32_t part;
+    bool operator<(const Entry& o) const { return value < o.value || (value == o.value && distance > o.distance); }
+  };
+  std::vector<int32_t>& part = flood_part_;
+  part.assign(size_t(n), -1);
+  std::priority_queue<Entry> queue;
+  const auto xy = [&](int i) {
+    const int p = grower.pixels()[size_t(region.begin + i)], y = p / width;
+    return Eigen::Vector2d(p - y * width, y);
+  };
+  const auto value_of = [&](int i) {
+    const int p = grower.pixels()[size_t(region.begin + i)], y = p / width, x = p - y * width;
+    return double(work.ptr<T>(y)[x]);
+  };
+  // Noise, not light: a step up of a few sigma plus a twentieth of the height.
+  const auto uphill = [&](double level) { return 4 * sigma + 0.05 * std::max(0.0, level - background); };
+  for (size_t k = 0; k < seeds.size(); ++k) queue.push({value_of(seeds[k]), 0.0, seeds[k], int32_t(k)});
+  while (!queue.empty()) {
+    const Entry e = queue.top();
+    queue.pop();
+    if (part[size_t(e.pixel)] >= 0) continue;
+    part[size_t(e.pixel)] = e.part;
+    const Eigen::Vector2d q = xy(e.pixel);
+    const int x = int(q.x()), y = int(q.y());
+    for (int ny = std::max(y - 1, box.y); ny <= std::min(y + 1, box.y + box.height - 1); ++ny)
+      for (int nx = std::max(x - 1, box.x); nx <= std::min(x + 1, box.x + box.width - 1); ++nx) {
+        const int j = cell_[size_t((ny - box.y) * box.width + (nx - box.x))];
+        if (j < 0 || part[size_t(j)] >= 0) continue;
+        // Clipped, and clearly brighter than the level this light has come down
+        // to: another light adds to it (the lens where two discs overlap). Not this
+        // flood's; if no flood comes down to it, the nearest centre takes it.
+        const double v = value_of(j);
+        if (v >= saturation && v > e.value + uphill(e.value)) continue;
+        queue.push({std::min(v, e.value), (Eigen::Vector2d(nx, ny) - centres[size_t(e.part)]).norm(), j, e.part});
+      }
+  }
+  for (int i = 0; i < n; ++i)
+    if (part[size_t(i)] >= 0) parts_[size_t(i)] = part[size_t(i)];
+}
+
 int BlobRecovery::split_by_prediction(const cv::Mat& work, cv::Rect window, const Levels& levels,
                                       RegionGrower* grower, size_t index, const std::vector<Eigen::Vector2d>& centres,
                                       std::vector<Region>* regions) {
@@ -42,10 +110,15 @@ int BlobRecovery::split_by_prediction(const cv::Mat& work, cv::Rect window, cons
   if (centres.size() < 2 || original.end <= original.begin) return 0;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& c : centres) mean += c;
-  const Eigen::Vector2d shift = original.blob.centroid - mean / double(centres.size());
   const int width = grower->width();
+  const Eigen::Vector2d shift = original.blob.centroid - mean / double(centres.size());
   const size_t first = regions->size();
   parts_.assign(size_t(original.end - original.begin), 0);
+  std::vector<Eigen::Vector2d> shifted;
+  for (const Eigen::Vector2d& c : centres) shifted.push_back(c + shift);
+  std::vector<int> seeds(centres.size(), -1);
+  // the region's pixel (index from begin) nearest each centre
+  std::vector<double> seed_distance(centres.size(), std::numeric_limits<double>::infinity());
   for (int i = original.begin; i < original.end; ++i) {
     const int p = grower->pixels()[size_t(i)], y = p / width, x = p - y * width;
     int nearest = 0;
@@ -53,8 +126,14 @@ int BlobRecovery::split_by_prediction(const cv::Mat& work, cv::Rect window, cons
     for (size_t k = 0; k < centres.size(); ++k) {
       const double d = (Eigen::Vector2d(x, y) - centres[k] - shift).squaredNorm();
       if (d < best) best = d, nearest = int(k);
+      if (d < seed_distance[k]) seed_distance[k] = d, seeds[k] = i - original.begin;
     }
     parts_[size_t(i - original.begin)] = nearest;
+  }
+  if (work.depth() == CV_8U) {
+    flood_from<uint8_t>(work, levels.background, levels.sigma, levels.saturation, *grower, original, seeds, shifted);
+  } else {
+    flood_from<uint16_t>(work, levels.background, levels.sigma, levels.saturation, *grower, original, seeds, shifted);
   }
   for (size_t k = 0; k < centres.size(); ++k) {
     Region r;

@@ -24,11 +24,16 @@ class BlobRecovery {
                        RegionGrower* grower, size_t index, std::vector<Region>* regions);
 
   // Splits regions[index] between `centres` (two or more predicted marker
-  // pixels inside it): each pixel goes to the nearest centre once every centre
-  // is shifted by the region's weighted centroid minus the centres' mean (the
-  // prediction's common error). The parts are measured and appended, accepted,
-  // origin kPredictionSplit, merged; the original is marked recovered. Parts
-  // with no pixel are not appended. Returns how many were.
+  // pixels inside it), shifted by the region's weighted centroid minus the
+  // centres' mean (the prediction's common error). Flooded from the region's
+  // pixel nearest each centre, brightest first, touching lights part at the
+  // valley between them (a nearest-centre split cuts a large bright spot at the
+  // bisector and hands its dim neighbour a slice of it). Where the floods meet no
+  // lower than half the dimmer light's height (no valley: overlapping flat discs,
+  // clipped plateaus), when two centres share a pixel, and for pixels no flood
+  // reaches, each pixel goes to the nearest centre. The parts are measured and
+  // appended, accepted, origin kPredictionSplit, merged; the original is marked
+  // recovered. Parts with no pixel are not appended. Returns how many were.
   int split_by_prediction(const cv::Mat& work, cv::Rect window, const Levels& levels, RegionGrower* grower,
                           size_t index, const std::vector<Eigen::Vector2d>& centres, std::vector<Region>* regions);
 
@@ -45,11 +50,16 @@ class BlobRecovery {
 
  private:
   template <typename T>
+  void flood_from(const cv::Mat& work, double background, double sigma, double saturation,
+                  const RegionGrower& grower, const Region& region,
+                  const std::vector<int>& seeds, const std::vector<Eigen::Vector2d>& centres);
+  template <typename T>
   void collect_rim(const cv::Mat& work, cv::Rect window, double level, const RegionGrower& grower,
                    const Region& region);
 
   std::vector<uint8_t> mask_, eroded_, next_;
   std::vector<int32_t> parts_;
+  std::vector<int32_t> cell_, flood_part_;
   std::vector<int> queue_;
   Circle trim_arc_ends(const Circle& circle);
 

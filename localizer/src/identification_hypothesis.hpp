@@ -19,6 +19,9 @@ struct TargetIdentifier::TrackCodes {
 struct TargetIdentifier::Hypothesis {
   size_t target = 0;
   std::array<int, 4> track{};  // index into the candidate tracks; -1: the marker out of view
+  // A set of four tracks for a target whose markers the codes cannot tell apart
+  // (all play one code): geometry assigns them to markers.
+  bool unordered = false;
   int missing = -1;            // three-track hypotheses: the marker out of view (0..3)
   double cost = 0;
   CodeMatch codes;

@@ -216,6 +216,7 @@ std::optional<MarkerPose> from_seen(const CameraModel& camera, const Target& tar
   if (seen.size() == 3) return from_three(camera, target, seen, prediction, evidence, options);
   if (seen.size() != 4) return std::nullopt;
   auto four = from_four(camera, target, seen, prediction, options);
+  if (four) four->four_rms_px = four->rms_px;
   if (four && four->rms_px <= options.max_rms_px) return four;
   if (!prediction) return std::nullopt;
   // One marker does not fit (a blob merged with another light, or a wrong track):
@@ -233,6 +234,7 @@ std::optional<MarkerPose> from_seen(const CameraModel& camera, const Target& tar
       best_d = d;
       best = candidate;
       best->outlier = seen[k].marker;
+      if (four) best->four_rms_px = four->rms_px;
     }
   }
   return best;

@@ -44,6 +44,10 @@ TargetIdentifier::TargetIdentifier(const CameraModel& camera, const TargetsFile&
       if (it == codes_.end()) codes_.push_back(*t.markers[m].code);
     }
     code_of_.push_back(of);
+    bool same = coded_ && (of[0] >= 0 || frequency_of_[ti][0] >= 0);
+    for (size_t m = 1; m < 4; ++m)
+      same = same && of[m] == of[0] && frequency_of_[ti][m] == frequency_of_[ti][0] && look_of_[ti][m] == look_of_[ti][0];
+    interchangeable_.push_back(same);
     extent_ratio_.push_back(t.marker_diameter_m > 0 ? extent / (t.marker_diameter_m / 2) : 1e9);
   }
 }
@@ -187,7 +191,7 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
     for (size_t m = 0; m < 4; ++m)
       for (size_t i = 0; i < n; ++i)
         if (may_be(tracks[i], i, t, m)) w.candidates[m].push_back(int(i));
-    w.combinations = 1;
+    w.combinations = interchangeable_[t] ? 1.0 / 24 : 1.0;
     for (const auto& c : w.candidates) w.combinations *= double(c.size());
     if (w.combinations > 0) order.push_back(std::move(w));
   }
@@ -198,19 +202,62 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
   // another target on them must still beat the codes).
   std::stable_sort(order.begin(), order.end(),
                    [](const Wanted& a, const Wanted& b) { return a.combinations < b.combinations; });
+  // A hypothesis that costs more than any could be allowed, plus the code margin,
+  // is neither accepted nor anyone's rival: partial sums above it are not
+  // continued (each track alone passed may_be, four of them need not).
+  double bound = std::numeric_limits<double>::infinity();
+  if (coded_ && !free_running_) {
+    int most = 0;
+    for (const TrackCodes& tc : track_codes_)
+      for (const CodeMatch& m : tc.matches) most = std::max(most, m.counted);
+    bound = allowed_errors(4 * most) + options_.code_margin;
+  }
   for (const Wanted& w : order) {
     const size_t t = w.target;
+    const auto cost = [&](int i, size_t m) {
+      const int c = code_of_[t][m];
+      return c >= 0 ? track_codes_[size_t(i)].best_cost[size_t(c)] : 0.0;
+    };
     // Tracks of one target lie within its image: at most its size over its markers' size, doubled.
     const auto near = [&](int a, int b) { return this->near(tracks[size_t(a)], tracks[size_t(b)], t); };
     const size_t before = hypotheses_.size();
     bool over = false;
     Hypothesis h;
     h.target = t;
+    if (interchangeable_[t]) {
+      // Markers the codes cannot tell apart: one hypothesis per set of four tracks,
+      // whose geometry names the markers (geometry(): all 24 assignments).
+      h.unordered = true;
+      const std::vector<int>& c = w.candidates[0];
+      const size_t k = c.size();
+      std::vector<double> costs(k);
+      for (size_t i = 0; i < k; ++i) costs[i] = cost(c[i], 0);
+      for (size_t i0 = 0; i0 < k && !over; ++i0)
+        for (size_t i1 = i0 + 1; i1 < k && !over; ++i1) {
+          if (costs[i0] + costs[i1] > bound || !near(c[i0], c[i1])) continue;
+          for (size_t i2 = i1 + 1; i2 < k && !over; ++i2) {
+            if (costs[i0] + costs[i1] + costs[i2] > bound || !near(c[i0], c[i2]) || !near(c[i1], c[i2])) continue;
+            for (size_t i3 = i2 + 1; i3 < k; ++i3) {
+              if (costs[i0] + costs[i1] + costs[i2] + costs[i3] > bound) continue;
+              if (!near(c[i0], c[i3]) || !near(c[i1], c[i3]) || !near(c[i2], c[i3])) continue;
+              if (hypotheses_.size() >= options_.max_hypotheses) {
+                over = true;
+                break;
+              }
+              h.track = {c[i0], c[i1], c[i2], c[i3]};
+              score_codes(&h);
+              hypotheses_.push_back(h);
+            }
+          }
+        }
+    }
     for (int a : w.candidates[0])
       for (int b : w.candidates[1]) {
-        if (over || b == a || !near(a, b)) continue;
+        if (over || h.unordered || b == a || cost(a, 0) + cost(b, 1) > bound || !near(a, b)) continue;
         for (int c : w.candidates[2]) {
           if (over || c == a || c == b || !near(a, c) || !near(b, c)) continue;
+          const double abc = cost(a, 0) + cost(b, 1) + cost(c, 2);
+          if (abc > bound) continue;
           // Unmodulated: no codes narrow the fourth track; a P3P root of the first
           // three must put marker 3 on it (else 16 tracks in reach give ~40 000
           // combinations a target, and the budget names none).
@@ -218,7 +265,8 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
           const int roots = coded_ ? 0 : predict_fourth(tracks, t, {a, b, c}, &fourth);
           if (!coded_ && roots == 0) continue;
           for (int d : w.candidates[3]) {
-            if (d == a || d == b || d == c || !near(a, d) || !near(b, d) || !near(c, d)) continue;
+            if (d == a || d == b || d == c || abc + cost(d, 3) > bound) continue;
+            if (!near(a, d) || !near(b, d) || !near(c, d)) continue;
             if (!coded_ && !std::any_of(fourth.begin(), fourth.begin() + roots, [&](const Eigen::Vector2d& px) {
                   return (px - tracks[size_t(d)].pixel).norm() <= kFourthMarkerTolerancePx + tracks[size_t(d)].radius_px;
                 })) {
@@ -239,12 +287,10 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
       Unweighed u;
       u.target = t;
       for (size_t m = 0; m < 4; ++m) {
-        const int c = code_of_[t][m];
         u.least[m] = std::numeric_limits<double>::infinity();
         for (int i : w.candidates[m]) {
-          const double cost = c >= 0 ? track_codes_[size_t(i)].best_cost[size_t(c)] : 0.0;
-          u.candidates[m].emplace_back(i, cost);
-          u.least[m] = std::min(u.least[m], cost);
+          u.candidates[m].emplace_back(i, cost(i, m));
+          u.least[m] = std::min(u.least[m], cost(i, m));
         }
       }
       unweighed_.push_back(std::move(u));
@@ -252,9 +298,68 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
   }
 }
 
-bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const {
+bool TargetIdentifier::holds(const std::vector<CandidateTrack>& tracks, size_t i) {
+  const bool ok = geometry(tracks, &hypotheses_[i]);
+  // The other assignments of a set of tracks join the hypotheses (not sorted in:
+  // same cost); references into hypotheses_ end here.
+  for (Hypothesis& o : assignments_) hypotheses_.push_back(o);
+  assignments_.clear();
+  return ok;
+}
+
+bool TargetIdentifier::unordered_geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) {
+  const Target& target = targets_.targets[h->target];
+  Bearing4 x;
+  Point4 X;
+  int measured = 0;
+  for (size_t i = 0; i < 4; ++i) {
+    const CandidateTrack& c = tracks[size_t(h->track[i])];
+    measured += c.measured;
+    if (!camera_.unproject(c.pixel, &x[i])) return false;
+    X[i] = target.markers[i].position_m;
+  }
+  if (measured < 3) return false;
+  P4POptions p4p;
+  p4p.solver = options_.solver;
+  p4p.camera = &camera_;
+  const P4PIdentification found = identify_p4p(x, X, p4p);
+  if (!found.in_pixels) return false;
+  std::vector<Hypothesis> held;
+  for (const P4PHypothesis& c : found.candidates) {
+    // A known-order P4P this far off does not refine to within the bound.
+    if (!(c.error_px <= 2 * options_.max_rms_px)) continue;
+    Hypothesis g = *h;
+    g.unordered = false;
+    for (size_t i = 0; i < 4; ++i) g.track[size_t(c.marker_of[i])] = h->track[i];
+    std::vector<MarkerObservation> observations;
+    for (size_t m = 0; m < 4; ++m) observations.push_back({X[m], tracks[size_t(g.track[m])].pixel});
+    g.pose = c.pose;
+    g.rms_px = c.error_px;
+    refine_geometry(observations, &g);
+    if (!(g.rms_px <= options_.max_rms_px)) continue;
+    g.geometry_state = 1;
+    held.push_back(g);
+  }
+  if (held.empty()) return false;
+  std::stable_sort(held.begin(), held.end(), [](const Hypothesis& a, const Hypothesis& b) { return a.rms_px < b.rms_px; });
+  *h = held.front();
+  assignments_.insert(assignments_.end(), held.begin() + 1, held.end());
+  return true;
+}
+
+void TargetIdentifier::refine_geometry(const std::vector<MarkerObservation>& observations, Hypothesis* h) const {
+  RefinementOptions refine;
+  refine.max_iterations = 10;
+  refine.sphere_centroid = false;
+  if (const auto refined = refine_pose(camera_, observations, h->pose, refine); refined) {
+    if (refined->rms_px < h->rms_px) h->pose = refined->pose, h->rms_px = refined->rms_px;
+  }
+}
+
+bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) {
   if (h->geometry_state != 0) return h->geometry_state > 0;
   h->geometry_state = -1;
+  if (h->unordered) return unordered_geometry(tracks, h);
   const Target& target = targets_.targets[h->target];
   Bearing4 x;
   Point4 X;
@@ -275,12 +380,7 @@ bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypot
   if (!solution) return false;
   h->pose = solution->pose;
   h->rms_px = solution->rms_error_px;
-  RefinementOptions refine;
-  refine.max_iterations = 10;
-  refine.sphere_centroid = false;
-  if (const auto refined = refine_pose(camera_, observations, solution->pose, refine); refined) {
-    if (refined->rms_px < h->rms_px) h->pose = refined->pose, h->rms_px = refined->rms_px;
-  }
+  refine_geometry(observations, h);
   if (!(h->rms_px <= options_.max_rms_px)) return false;
   if (!coded_ && !sizes_agree(tracks, *h)) return false;
   h->geometry_state = 1;
@@ -348,16 +448,20 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
     sorted_.reserve(order.size());
     for (uint32_t i : order) sorted_.push_back(hypotheses_[i]);
     hypotheses_.swap(sorted_);
+    sorted_count_ = hypotheses_.size();
   }
 
   std::vector<char> track_blocked(tracks.size(), 0), target_blocked(targets_.targets.size(), 0);
   const double margin = coded_ ? options_.code_margin : std::numeric_limits<double>::infinity();
   for (auto& [key, e] : geometry_evidence_) e.touched = false;
   for (size_t i = 0; i < hypotheses_.size(); ++i) {
-    Hypothesis& h = hypotheses_[i];
-    if (target_blocked[h.target]) continue;
-    if (std::any_of(h.track.begin(), h.track.end(), [&](int k) { return track_blocked[size_t(k)]; })) continue;
-    if (!codes_accept(h) || !geometry(tracks, &h)) continue;
+    {
+      const Hypothesis& h = hypotheses_[i];
+      if (target_blocked[h.target]) continue;
+      if (std::any_of(h.track.begin(), h.track.end(), [&](int k) { return track_blocked[size_t(k)]; })) continue;
+      if (!codes_accept(h) || !holds(tracks, i)) continue;
+    }
+    const Hypothesis& h = hypotheses_[i];
     if (unweighed_rival(h)) {
       // A rival not weighed: wait, as for any rival too close to call.
       target_blocked[h.target] = 1;
@@ -430,11 +534,15 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
 std::vector<size_t> TargetIdentifier::rivals_of(const std::vector<CandidateTrack>& tracks, size_t i, double margin) {
   std::vector<size_t> group{i};
   const Hypothesis h = hypotheses_[i];
+  // Sorted by cost up to sorted_count_; the other assignments of sets of tracks
+  // (holds()) follow, as they are found.
   for (size_t j = 0; j < hypotheses_.size(); ++j) {
-    Hypothesis& r = hypotheses_[j];
-    if (!(r.cost < h.cost + margin)) break;  // sorted by cost
-    if (j == i || !h.shares(r)) continue;
-    if (geometry(tracks, &r) && r.rms_px < h.rms_px + options_.geometry_margin_px) group.push_back(j);
+    if (!(hypotheses_[j].cost < h.cost + margin)) {
+      if (j < sorted_count_) j = sorted_count_ - 1;
+      continue;
+    }
+    if (j == i || !h.shares(hypotheses_[j])) continue;
+    if (holds(tracks, j) && hypotheses_[j].rms_px < h.rms_px + options_.geometry_margin_px) group.push_back(j);
   }
   return group;
 }
@@ -489,16 +597,18 @@ std::optional<size_t> TargetIdentifier::geometry_winner(const std::vector<Candid
   for (size_t k = 1; k < group.size(); ++k)
     if (evidence[k]->mean() < evidence[best]->mean()) best = k;
   const GeometryEvidence& b = *evidence[best];
-  if (b.frames < options_.min_geometry_frames) return std::nullopt;
   // Gaussian pixel noise sigma, from the best hypothesis' residuals (2 degrees of
-  // freedom a frame: 8 coordinates, 6 pose parameters), never below the floor.
-  const double sigma2 = std::max(b.ssr_px2 / (2.0 * b.frames), options_.geometry_noise_floor_px * options_.geometry_noise_floor_px);
+  // freedom a frame: 8 coordinates, 6 pose parameters), never below the floor;
+  // before min_geometry_frames, never below the decisive level.
+  const double own = b.ssr_px2 / (2.0 * b.frames);
+  const double sigma2 = std::max(own, options_.geometry_noise_floor_px * options_.geometry_noise_floor_px);
+  const double decisive2 = std::max(own, options_.decisive_noise_px * options_.decisive_noise_px);
   for (size_t k = 0; k < group.size(); ++k) {
     if (k == best) continue;
     const GeometryEvidence& r = *evidence[k];
     const int frames = std::min(b.frames, r.frames);
-    if (frames < options_.min_geometry_frames) return std::nullopt;
-    const double nats = frames * (r.mean() - b.mean()) / (2 * sigma2);
+    const double s2 = frames < options_.min_geometry_frames ? decisive2 : sigma2;
+    const double nats = frames * (r.mean() - b.mean()) / (2 * s2);
     if (nats < options_.min_geometry_evidence) return std::nullopt;
   }
   return group[best];

@@ -1,6 +1,7 @@
 #include "target_poses.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "marker_reassociation.hpp"
@@ -10,7 +11,9 @@
 namespace tetrapulse::localizer_internal {
 namespace {
 
-constexpr double kMinRmsGatePx = 0.2;         // the fit a pose needs, at the least
+constexpr double kMinRmsGatePx = 0.05;  // the fit a pose needs, at the least
+// The least typical RMS of a target's four-marker fits (a quarter of the gate).
+constexpr double kMinTypicalRmsPx = 0.0125;
 constexpr double kMinRotationGate = 0.04;     // rad
 constexpr double kMinTranslationGate = 0.03;  // of the distance
 // How far from the prediction a pose fitted afresh to the blobs around a target
@@ -20,6 +23,7 @@ constexpr double kMaxReassociationDistance = 0.4;
 struct FrameMarkers {
   std::vector<SeenMarker> confirmed, unconfirmed;
   std::vector<std::pair<int, TrackSample>> merged;  // seen markers whose blob was split between predicted markers
+  std::vector<int> shared;  // of those, the ones among `unconfirmed`: a confirmed track whose light another shares
   MarkerEvidence evidence;  // hints of confirmed markers dark now, missing markers, lights
 };
 
@@ -85,7 +89,10 @@ FrameMarkers markers_of(const PoseFrame& f, size_t t, const std::array<int, 4>& 
     }
   // The others may join a pose of four they fit, as an unconfirmed marker would.
   for (size_t i = 0; i < out.merged.size(); ++i)
-    if (!paired[i]) out.unconfirmed.push_back(SeenMarker{out.merged[i].first, out.merged[i].second.centroid});
+    if (!paired[i]) {
+      out.unconfirmed.push_back(SeenMarker{out.merged[i].first, out.merged[i].second.centroid});
+      out.shared.push_back(out.merged[i].first);
+    }
   for (const BlobTrack& track : f.tracker.tracks()) {
     const TrackSample& newest = track.history().newest();
     if (newest.frame != f.stamp.frame || !newest.detected) continue;
@@ -111,6 +118,19 @@ std::optional<MarkerPose> solve(const PoseFrame& f, const Target& target, const 
   if (all.size() == 4) {
     auto four = solve_marker_pose(f.camera, target, all, tt.predicted, options, markers->evidence);
     if (four && four->used.size() == 4) return four;
+    // Three fit without the fourth, and each of the three is a confirmed track (a
+    // part of a split blob is one: only its light is shared): the pose of the
+    // three, the prediction's gate still to pass (drones crossing, three of one
+    // drone's blobs touching the other's: the parts sit within a few tenths of a
+    // pixel, the fourth is pulled).
+    const auto known = [&](int m) {
+      return std::any_of(markers->confirmed.begin(), markers->confirmed.end(),
+                         [m](const SeenMarker& s) { return s.marker == m; }) ||
+             std::find(markers->shared.begin(), markers->shared.end(), m) != markers->shared.end();
+    };
+    if (four && four->used.size() == 3 && four->outlier >= 0 &&
+        std::all_of(four->used.begin(), four->used.end(), known) && markers->confirmed.size() < 3)
+      return four;
   }
   for (const SeenMarker& s : markers->unconfirmed) {
     markers->evidence.missing.push_back(MissingMarker{s.marker, MarkerLight::kUnknown});
@@ -200,8 +220,16 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
     if (!holds_a_track || mid - tt.last_pose_ns > options.forget_after_ns) tt.forget();
     return std::nullopt;
   }
+  const bool clean_four = markers.confirmed.size() == 4 && markers.unconfirmed.empty() && markers.evidence.merged.empty();
+  if (clean_four && solved->used.size() < 4 && std::isfinite(solved->four_rms_px)) {
+    // Four clean markers that missed the gate: one may be pulled, or the rig's
+    // noise is more than learned. The typical fit grows towards theirs by at most
+    // a fifth a frame: a stray blob lifts it briefly, a noisier rig than the
+    // identifying fit showed is learned within a dozen frames.
+    tt.typical_rms_px = 0.8 * tt.typical_rms_px + 0.2 * std::min(solved->four_rms_px, 2 * tt.typical_rms_px);
+  }
   if (solved->used.size() == 4 && markers.unconfirmed.empty() && markers.evidence.merged.empty()) {
-    tt.typical_rms_px = std::max(0.05, 0.8 * tt.typical_rms_px + 0.2 * solved->rms_px);
+    tt.typical_rms_px = std::max(kMinTypicalRmsPx, 0.8 * tt.typical_rms_px + 0.2 * solved->rms_px);
     ++tt.clean_poses;
     centroids->weigh(f.camera, target, markers.confirmed, solved->pose, solved->rms_px, options.pose.centroid_sigma_px);
   }

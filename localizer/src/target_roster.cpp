@@ -20,7 +20,7 @@ void TrackedTarget::identify(const std::array<int64_t, 4>& tracks, const CodeClo
   prediction_error_px = 2;
   prediction_error_rad = 0.1;
   prediction_error_rel = 0.1;
-  typical_rms_px = std::clamp(rms_px, 0.05, 0.5);
+  typical_rms_px = std::clamp(rms_px, 0.0125, 0.5);
   clean_poses = 0;
 }
 

@@ -6,6 +6,8 @@
 #include <limits>
 #include <random>
 
+#include <opencv2/imgproc.hpp>
+
 #include "spot_renderer.hpp"
 
 namespace tetrapulse {
@@ -574,6 +576,33 @@ TEST(BlobExtractor, RoiModeSplitsMergedMarkersBetweenTheirPredictions) {
   rois[1].splits = false;
   ASSERT_TRUE(extractor.extract(quantise(img, CV_8U), rois, &out));
   EXPECT_FALSE(out.rois[0].blob.merged);
+}
+
+TEST(BlobExtractor, RoiModeSplitsTouchingSpotsAtTheValleyBetweenThem) {
+  // Two drones crossing (crowd): a sphere image 6.5 px in radius touches a dimmer
+  // one 5.5 px in radius, 12.5 px apart, the light between them down to a
+  // fifteenth of the dimmer's; one region at the growing threshold. Split at the
+  // valley, each part holds its own light; the centres' bisector cut the larger
+  // disc's rim off and gave it to the smaller one.
+  auto img = canvas(120, 100, 20);
+  const Eigen::Vector2d a(50.4, 40.3), b(53.1, 52.5);
+  add_disc(&img, a, 6.5, 3000);
+  add_disc(&img, b, 5.5, 1400);
+  cv::GaussianBlur(img, img, cv::Size(0, 0), 0.8);
+  add_noise(&img, 4, 7);
+  const Eigen::Vector2d off(0.4, -0.5);
+  std::vector<BlobRoi> rois = {roi(a + off, 1, 9), roi(b + off, 2, 9)};
+  for (BlobRoi& r : rois) r.splits = true;
+  BlobExtractor extractor;
+  BlobExtraction out;
+  ASSERT_TRUE(extractor.extract(quantise(img, CV_16U), rois, &out));
+  ASSERT_TRUE(out.rois[0].detected());
+  ASSERT_TRUE(out.rois[1].detected());
+  const Blob& pa = out.rois[0].blob;
+  const Blob& pb = out.rois[1].blob;
+  ASSERT_TRUE(pa.merged && pb.merged) << "the two spots did not merge: nothing split";
+  EXPECT_LT((pa.centroid - a).norm(), 0.1);
+  EXPECT_LT((pb.centroid - b).norm(), 0.1);
 }
 
 TEST(BlobExtractor, RoiModeAtAndBeyondTheImageBorder) {

@@ -11,6 +11,8 @@
 #include <optional>
 #include <random>
 
+#include "tetrapulse/localizer/p4p.hpp"
+#include "tetrapulse/localizer/pose_refinement.hpp"
 #include "tetrapulse/localizer/testing/target_views.hpp"
 
 namespace tetrapulse {
@@ -350,6 +352,68 @@ TEST_F(Identify, AMarkerOutOfViewLeavesThreeThatNameTheTarget) {
     four_only.edge_identification = false;
     EXPECT_EQ(watch(camera, targets, {s}, 36, 8, four_only).identifications, 0);
   }
+}
+
+// A view of `target` whose best wrong assignment of its four exact pixels fits
+// at an RMS within [low, high] px (p4p.hpp, refined as the identifier does).
+std::optional<Pose> view_with_rival(const CameraModel& camera, const Target& target, double low, double high,
+                                    uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Point4 X;
+  for (size_t m = 0; m < 4; ++m) X[m] = target.markers[m].position_m;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Pose pose = testing::random_visible_pose(rng, camera, target, 0.8, 2.5, 20);
+    Bearing4 x;
+    bool ok = true;
+    for (size_t m = 0; m < 4; ++m) {
+      Eigen::Vector2d px;
+      ok = ok && camera.project(pose.apply(X[m]), &px) && camera.unproject(px, &x[m]);
+    }
+    if (!ok) continue;
+    const P4PIdentification found = identify_p4p(x, X, {kDefaultP3PSolver, &camera});
+    if (found.candidates.size() < 2 || !found.in_pixels) continue;
+    // As the identifier weighs it: refined from its P4P pose (centre projections).
+    const P4PHypothesis& c = found.candidates[1];
+    std::vector<MarkerObservation> observations;
+    for (size_t i = 0; i < 4; ++i) {
+      Eigen::Vector2d px;
+      camera.project(pose.apply(X[i]), &px);
+      observations.push_back({X[size_t(c.marker_of[i])], px});
+    }
+    RefinementOptions refine;
+    refine.max_iterations = 10;
+    refine.sphere_centroid = false;
+    const auto refined = refine_pose(camera, observations, c.pose, refine);
+    const double rival = refined ? std::min(refined->rms_px, c.error_px) : c.error_px;
+    if (rival >= low && rival <= high) return pose;
+  }
+  return std::nullopt;
+}
+
+TEST_F(Identify, ARivalAssignmentThatFitsFarWorseIsRefutedInItsFirstFrame) {
+  // A code per target (all four markers play it: the codes name the target,
+  // geometry its markers). Where a wrong assignment fits at 0.8-0.95 px against
+  // 0.1 px noise (drones of crowd-on-off: 0.86-0.98 px), it is refuted in the frame the codes are read far enough, as
+  // for a view with no rival; one at 0.15-0.25 px is weighed over
+  // min_geometry_frames frames first (two frames later).
+  TargetsFile targets = two_coded_targets();
+  targets.targets.resize(1);
+  for (Marker& m : targets.targets[0].markers) m.code = targets.targets[0].markers[0].code;
+  const Target& target = targets.targets[0];
+  const CodeClock clock = CodeClock::from(targets.timebase);
+  const auto first_frame = [&](const Pose& pose) {
+    const Watch r = watch(camera, targets, {Shown{0, pose, clock, {}}}, 30, 5);
+    expect_correct(camera, targets, Shown{0, pose, clock, {}}, r);
+    return r.first.count(0) ? r.first.at(0).first : int64_t(-1);
+  };
+  const auto clear = view_with_rival(camera, target, 3.0, 1e9, 1);
+  const auto far = view_with_rival(camera, target, 0.8, 0.95, 2);
+  const auto close = view_with_rival(camera, target, 0.15, 0.25, 3);
+  ASSERT_TRUE(clear && far && close);
+  const int64_t without_rival = first_frame(*clear);
+  ASSERT_GE(without_rival, 0);
+  EXPECT_EQ(first_frame(*far), without_rival);
+  EXPECT_EQ(first_frame(*close), without_rival + 2);
 }
 
 TEST_F(Identify, ThreeMarkersOfOneCodeAreNeverNamedWrongly) {

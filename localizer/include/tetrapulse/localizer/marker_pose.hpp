@@ -31,6 +31,7 @@
 // in turn as above; the one whose absence leaves a pose that fits and agrees
 // with the prediction is reported as the outlier.
 // Poses as pose.hpp (p_C = R p_T + t, metres); pixels in the OpenCV convention.
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -113,6 +114,9 @@ struct MarkerPose {
   // picked, evidence of the image rather than of the prediction.
   bool hinted = false;
   double rms_px = 0;
+  // Four markers seen: the RMS of their best four-marker fit, also when it missed
+  // max_rms_px and three of them gave the pose (NaN when four were not fitted).
+  double four_rms_px = std::numeric_limits<double>::quiet_NaN();
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();  // of (w, v), pose_refinement.hpp
   bool has_covariance = false;
 };

@@ -39,7 +39,11 @@
 //   n (mean SSR_rival - mean SSR_best) / (2 sigma^2) >= min_geometry_evidence nats,
 //   sigma^2 = max(SSR_best / (2 n), geometry_noise_floor_px^2),
 // over n >= min_geometry_frames frames: the log-likelihood ratio under Gaussian
-// pixel noise whose level the best hypothesis' own residuals give.
+// pixel noise whose level the best hypothesis' own residuals give. A rival that
+// fits far worse is refuted sooner: over fewer frames when the same ratio holds
+// with sigma at least decisive_noise_px, a centroid noise no measured, unmerged
+// blob exceeds (a permutation of a drone's markers fitting at 0.9 px against
+// 0.005 px for the truth is refuted in its first frame, not its third).
 //
 // Of hypotheses tied in codes, the best geometry is weighed first: its rivals are
 // those within geometry_margin_px of it.
@@ -87,6 +91,7 @@
 #include "tetrapulse/localizer/code_match.hpp"
 #include "tetrapulse/localizer/p3p.hpp"
 #include "tetrapulse/localizer/pose.hpp"
+#include "tetrapulse/localizer/pose_refinement.hpp"
 #include "tetrapulse/localizer/targets.hpp"
 #include "tetrapulse/localizer/track_bits.hpp"
 
@@ -107,6 +112,7 @@ struct IdentificationOptions {
   double min_geometry_evidence = 12.0;   // nats
   int min_geometry_frames = 3;
   double geometry_noise_floor_px = 0.05;
+  double decisive_noise_px = 0.3;  // noise assumed before min_geometry_frames (see above)
   // Unmodulated targets: blob sizes against the pose's (see above).
   double min_size_ratio = 0.75;
   double min_sized_radius_px = 3.0;
@@ -176,7 +182,14 @@ class TargetIdentifier {
   Identification identification_of(const Hypothesis& h, const std::array<int64_t, 4>& track_ids) const;
   void enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted);
   void score_codes(Hypothesis* h) const;
-  bool geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) const;
+  // Whether h's tracks fit one pose of its target (h->pose, h->rms_px). An
+  // unordered h becomes its best assignment; the others that fit wait in
+  // assignments_ for holds() to add.
+  bool geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h);
+  bool unordered_geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h);
+  void refine_geometry(const std::vector<MarkerObservation>& observations, Hypothesis* h) const;
+  // geometry() of hypotheses_[i]; adds the other assignments of a set of tracks.
+  bool holds(const std::vector<CandidateTrack>& tracks, size_t i);
   // Unmodulated targets: where the P3P roots of tracks `three` as markers 0-2 of target t
   // put marker 3 (pixels); how many roots put it in front of the camera.
   int predict_fourth(const std::vector<CandidateTrack>& tracks, size_t t, const std::array<int, 3>& three,
@@ -207,6 +220,9 @@ class TargetIdentifier {
   std::vector<TrackCodes> track_codes_;
   std::vector<Hypothesis> hypotheses_;
   std::vector<Hypothesis> sorted_;  // scratch of the sort by cost
+  size_t sorted_count_ = 0;          // hypotheses_ sorted by cost; the rest added by holds()
+  std::vector<Hypothesis> assignments_;  // see geometry()
+  std::vector<bool> interchangeable_;    // per target: all four markers play one code
   // Targets with too many combinations to weigh in this call: each marker's
   // candidate tracks with their code cost, and the least cost per marker.
   struct Unweighed {
