@@ -20,6 +20,11 @@ namespace {
 // three noisy centres extrapolate the fourth by a few pixels.
 constexpr double kFourthMarkerTolerancePx = 8.0;
 
+// A known-order P4P pose (three markers exact, the fourth's error shared out)
+// that misses the geometry bound by this factor does not refine to within it:
+// not refined (most hypotheses of weak codes are such).
+constexpr double kMaxUnrefinedRms = 2.0;
+
 int64_t gcd(int64_t a, int64_t b) { return b == 0 ? a : gcd(b, a % b); }
 
 }  // namespace
@@ -326,8 +331,7 @@ bool TargetIdentifier::unordered_geometry(const std::vector<CandidateTrack>& tra
   if (!found.in_pixels) return false;
   std::vector<Hypothesis> held;
   for (const P4PHypothesis& c : found.candidates) {
-    // A known-order P4P this far off does not refine to within the bound.
-    if (!(c.error_px <= 2 * options_.max_rms_px)) continue;
+    if (!(c.error_px <= kMaxUnrefinedRms * options_.max_rms_px)) continue;
     Hypothesis g = *h;
     g.unordered = false;
     for (size_t i = 0; i < 4; ++i) g.track[size_t(c.marker_of[i])] = h->track[i];
@@ -380,6 +384,7 @@ bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypot
   if (!solution) return false;
   h->pose = solution->pose;
   h->rms_px = solution->rms_error_px;
+  if (!(h->rms_px <= kMaxUnrefinedRms * options_.max_rms_px)) return false;
   refine_geometry(observations, h);
   if (!(h->rms_px <= options_.max_rms_px)) return false;
   if (!coded_ && !sizes_agree(tracks, *h)) return false;
