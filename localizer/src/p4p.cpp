@@ -22,11 +22,12 @@ struct Observations {
 
   // Error of bearing i explained by target point X under `pose`: angle and, with a
   // camera, pixels. False when X is behind the camera or does not project.
+  // rad may be null (the angle is not computed then).
   bool error(const Pose& pose, int i, const Eigen::Vector3d& X, double* rad, double* pixels) const {
     const Eigen::Vector3d y = pose.apply(X);
     const double along = y.dot(x[i]);
     if (!(along > 0)) return false;
-    *rad = std::atan2(y.cross(x[i]).norm(), along);
+    if (rad) *rad = std::atan2(y.cross(x[i]).norm(), along);
     if (!camera) return true;
     Eigen::Vector2d predicted;
     if (!camera->project(y, &predicted)) return false;
@@ -70,32 +71,52 @@ namespace {
 
 // Known correspondence: of the poses P3P gives for each triple, the one with the
 // smallest RMS error over all four bearings (pixels when the observations have them).
-std::optional<P4PSolution> best_of_triples(const Observations& obs, const Point4& X, P3PSolver solver) {
+// A root is weighed on its left-out bearing first (the triple fits it exactly) and
+// dropped when that error alone is no better than the best so far or max_cost (a
+// sum of squares); its other errors are summed in bearing order, so the result is
+// that of weighing every root on all four.
+std::optional<P4PSolution> best_of_triples(const Observations& obs, const Point4& X, P3PSolver solver,
+                                           double max_cost = std::numeric_limits<double>::infinity()) {
   const Bearing4& x = obs.x;
+  const bool pixels = obs.camera != nullptr;
   std::optional<P4PSolution> best;
-  double best_cost = std::numeric_limits<double>::infinity();
+  double best_cost = max_cost;
   for (int left_out = 0; left_out < 4; ++left_out) {
     const int a = (left_out + 1) % 4, b = (left_out + 2) % 4, c = (left_out + 3) % 4;
     PoseCandidates poses;
     const int n = solve_p3p(solver, {x[a], x[b], x[c]}, {X[a], X[b], X[c]}, &poses);
     for (int k = 0; k < n; ++k) {
-      double sum_rad = 0, sum_px = 0;
+      std::array<double, 4> err{};
+      double rad = 0;
+      if (!obs.error(poses[k], left_out, X[left_out], pixels ? nullptr : &rad, &err[size_t(left_out)])) continue;
+      if (!pixels) err[size_t(left_out)] = rad;
+      if (!(err[size_t(left_out)] * err[size_t(left_out)] < best_cost)) continue;
       bool explained = true;
       for (int i = 0; i < 4 && explained; ++i) {
-        double rad, px = 0;
-        explained = obs.error(poses[k], i, X[i], &rad, &px);
-        sum_rad += rad * rad;
-        sum_px += px * px;
+        if (i == left_out) continue;
+        explained = obs.error(poses[k], i, X[i], pixels ? nullptr : &rad, &err[size_t(i)]);
+        if (!pixels) err[size_t(i)] = rad;
       }
       if (!explained) continue;
-      const double cost = obs.camera ? sum_px : sum_rad;
+      double cost = 0;
+      for (double e : err) cost += e * e;
       if (cost < best_cost) {
         best_cost = cost;
-        best = P4PSolution{poses[k], std::sqrt(sum_rad / 4), std::numeric_limits<double>::quiet_NaN()};
-        if (obs.camera) best->rms_error_px = std::sqrt(sum_px / 4);
+        best = P4PSolution{poses[k], 0, std::numeric_limits<double>::quiet_NaN()};
       }
     }
   }
+  if (!best) return best;
+  // The angles of the chosen pose (in pixels only the chosen one needs them).
+  double sum_rad = 0, sum_px = 0;
+  for (int i = 0; i < 4; ++i) {
+    double rad = 0, px = 0;
+    obs.error(best->pose, i, X[i], &rad, &px);
+    sum_rad += rad * rad;
+    sum_px += px * px;
+  }
+  best->rms_error_rad = std::sqrt(sum_rad / 4);
+  if (pixels) best->rms_error_px = std::sqrt(sum_px / 4);
   return best;
 }
 
@@ -161,8 +182,14 @@ P4PIdentification identify_p4p(const Bearing4& x, const Point4& X, const P4POpti
   return result;
 }
 
-std::optional<P4PSolution> solve_p4p(const Bearing4& x, const Point4& X, const P4POptions& options) {
-  return best_of_triples(Observations(x, options.camera), X, options.solver);
+std::optional<P4PSolution> solve_p4p(const Bearing4& x, const Point4& X, const P4POptions& options,
+                                     double max_rms) {
+  const Observations obs(x, options.camera);
+  // Bounds the sum of four squares just above max_rms's, so that the caller's own
+  // test of rms <= max_rms decides the boundary.
+  const double max_cost = std::isfinite(max_rms) ? 4 * max_rms * max_rms * (1 + 1e-9)
+                                                 : std::numeric_limits<double>::infinity();
+  return best_of_triples(obs, X, options.solver, max_cost);
 }
 
 }  // namespace tetrapulse

@@ -27,6 +27,16 @@ constexpr double kMaxUnrefinedRms = 2.0;
 
 int64_t gcd(int64_t a, int64_t b) { return b == 0 ? a : gcd(b, a % b); }
 
+// Whether the geometry check sees two targets alike: marker positions and size.
+bool same_markers(const Target& a, const Target& b) {
+  if (a.marker_diameter_m != b.marker_diameter_m) return false;
+  for (size_t m = 0; m < 4; ++m)
+    if (a.markers[m].position_m != b.markers[m].position_m) return false;
+  return true;
+}
+
+constexpr uint64_t kNoSharedKey = ~uint64_t(0);
+
 }  // namespace
 
 TargetIdentifier::TargetIdentifier(const CameraModel& camera, const TargetsFile& targets,
@@ -54,6 +64,10 @@ TargetIdentifier::TargetIdentifier(const CameraModel& camera, const TargetsFile&
       same = same && of[m] == of[0] && frequency_of_[ti][m] == frequency_of_[ti][0] && look_of_[ti][m] == look_of_[ti][0];
     interchangeable_.push_back(same);
     extent_ratio_.push_back(t.marker_diameter_m > 0 ? extent / (t.marker_diameter_m / 2) : 1e9);
+    // The first target with the same markers (positions, size) names the class.
+    size_t first = 0;
+    while (first < ti && !same_markers(targets.targets[first], t)) ++first;
+    geometry_class_.push_back(first == ti ? uint32_t(ti) : geometry_class_[first]);
   }
 }
 
@@ -320,7 +334,7 @@ bool TargetIdentifier::unordered_geometry(const std::vector<CandidateTrack>& tra
   for (size_t i = 0; i < 4; ++i) {
     const CandidateTrack& c = tracks[size_t(h->track[i])];
     measured += c.measured;
-    if (!camera_.unproject(c.pixel, &x[i])) return false;
+    if (!bearing_of(tracks, size_t(h->track[i]), &x[i])) return false;
     X[i] = target.markers[i].position_m;
   }
   if (measured < 3) return false;
@@ -360,10 +374,36 @@ void TargetIdentifier::refine_geometry(const std::vector<MarkerObservation>& obs
   }
 }
 
+uint64_t TargetIdentifier::shared_key(const Hypothesis& h, size_t track_count) const {
+  // Class (16 bits) and the four tracks (12 bits each).
+  const uint32_t cls = geometry_class_[h.target];
+  if (track_count >= (1u << 12) || cls >= (1u << 16)) return kNoSharedKey;
+  uint64_t key = cls;
+  for (int k : h.track) {
+    if (k < 0) return kNoSharedKey;
+    key = (key << 12) | uint64_t(k);
+  }
+  return key;
+}
+
 bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) {
   if (h->geometry_state != 0) return h->geometry_state > 0;
   h->geometry_state = -1;
   if (h->unordered) return unordered_geometry(tracks, h);
+  // Targets of one class fit a set of tracks alike: computed once per call.
+  const uint64_t key = shared_key(*h, tracks.size());
+  if (key != kNoSharedKey) {
+    if (const auto it = shared_geometry_.find(key); it != shared_geometry_.end()) {
+      h->geometry_state = it->second.state, h->pose = it->second.pose, h->rms_px = it->second.rms_px;
+      return h->geometry_state > 0;
+    }
+  }
+  h->geometry_state = ordered_geometry(tracks, h) ? 1 : -1;
+  if (key != kNoSharedKey) shared_geometry_.emplace(key, SharedGeometry{h->geometry_state, h->pose, h->rms_px});
+  return h->geometry_state > 0;
+}
+
+bool TargetIdentifier::ordered_geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h) {
   const Target& target = targets_.targets[h->target];
   Bearing4 x;
   Point4 X;
@@ -372,24 +412,32 @@ bool TargetIdentifier::geometry(const std::vector<CandidateTrack>& tracks, Hypot
   for (size_t m = 0; m < 4; ++m) measured += tracks[size_t(h->track[m])].measured;
   if (measured < 3) return false;
   for (size_t m = 0; m < 4; ++m) {
-    const Eigen::Vector2d& px = tracks[size_t(h->track[m])].pixel;
-    if (!camera_.unproject(px, &x[m])) return false;
+    const size_t k = size_t(h->track[m]);
+    if (!bearing_of(tracks, k, &x[m])) return false;
     X[m] = target.markers[m].position_m;
-    observations.push_back({X[m], px});
+    observations.push_back({X[m], tracks[k].pixel});
   }
   P4POptions p4p;
   p4p.solver = options_.solver;
   p4p.camera = &camera_;
-  const auto solution = solve_p4p(x, X, p4p);
+  const double max_unrefined = kMaxUnrefinedRms * options_.max_rms_px;
+  const auto solution = solve_p4p(x, X, p4p, max_unrefined);
   if (!solution) return false;
   h->pose = solution->pose;
   h->rms_px = solution->rms_error_px;
-  if (!(h->rms_px <= kMaxUnrefinedRms * options_.max_rms_px)) return false;
+  if (!(h->rms_px <= max_unrefined)) return false;
   refine_geometry(observations, h);
   if (!(h->rms_px <= options_.max_rms_px)) return false;
-  if (!coded_ && !sizes_agree(tracks, *h)) return false;
-  h->geometry_state = 1;
-  return true;
+  return coded_ || sizes_agree(tracks, *h);
+}
+
+bool TargetIdentifier::bearing_of(const std::vector<CandidateTrack>& tracks, size_t k, Eigen::Vector3d* x) {
+  // Unprojecting is iterative under distortion: once per track and call.
+  if (bearings_.size() != tracks.size()) bearings_.assign(tracks.size(), {0, Eigen::Vector3d::Zero()});
+  auto& [state, bearing] = bearings_[k];
+  if (state == 0) state = camera_.unproject(tracks[k].pixel, &bearing) ? 1 : -1;
+  *x = bearing;
+  return state > 0;
 }
 
 int TargetIdentifier::predict_fourth(const std::vector<CandidateTrack>& tracks, size_t t, const std::array<int, 3>& three,
@@ -439,6 +487,8 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
                                                        const std::vector<bool>& wanted) {
   std::vector<Identification> out;
   last_hypotheses_ = 0;
+  shared_geometry_.clear();
+  bearings_.clear();
   if (tracks.size() < 3) return out;
   if (coded_) score_tracks(tracks);
   enumerate(tracks, wanted);

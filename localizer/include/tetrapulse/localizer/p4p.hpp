@@ -75,7 +75,10 @@ struct P4PSolution {
 
 // Known correspondence (bearing i sees marker i): P3P on each of the four triples;
 // the pose with the smallest RMS error over all four bearings (pixels with a camera,
-// else angle). nullopt when no triple gives a pose with every marker in front.
-std::optional<P4PSolution> solve_p4p(const Bearing4& x, const Point4& X, const P4POptions& options = {});
+// else angle). nullopt when no triple gives a pose with every marker in front, or
+// none whose RMS error is within max_rms (pixels with a camera, else radians): a
+// caller that rejects worse poses anyway says so and the solver skips them early.
+std::optional<P4PSolution> solve_p4p(const Bearing4& x, const Point4& X, const P4POptions& options = {},
+                                     double max_rms = std::numeric_limits<double>::infinity());
 
 }  // namespace tetrapulse

@@ -80,6 +80,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -186,6 +187,11 @@ class TargetIdentifier {
   // unordered h becomes its best assignment; the others that fit wait in
   // assignments_ for holds() to add.
   bool geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h);
+  bool ordered_geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h);
+  // The key of h's class and tracks in shared_geometry_ (all ones: none).
+  uint64_t shared_key(const Hypothesis& h, size_t track_count) const;
+  // Bearing of tracks[k] (false: its pixel does not unproject), cached in this call.
+  bool bearing_of(const std::vector<CandidateTrack>& tracks, size_t k, Eigen::Vector3d* x);
   bool unordered_geometry(const std::vector<CandidateTrack>& tracks, Hypothesis* h);
   void refine_geometry(const std::vector<MarkerObservation>& observations, Hypothesis* h) const;
   // geometry() of hypotheses_[i]; adds the other assignments of a set of tracks.
@@ -217,6 +223,16 @@ class TargetIdentifier {
   std::vector<std::array<int, 4>> frequency_of_; // rig_codes() index of a marker's frequency code (-1: binary or none)
   std::vector<std::array<int, 4>> look_of_;      // each marker's look (RigLooks::look_of)
   std::vector<double> extent_ratio_;             // target's largest marker distance / marker radius
+  // Targets with the same markers share a class (the index of its first target): a set
+  // of tracks fits all of them alike, so its geometry is computed once per call.
+  std::vector<uint32_t> geometry_class_;
+  struct SharedGeometry {
+    int8_t state = 0;
+    Pose pose;
+    double rms_px = 0;
+  };
+  std::unordered_map<uint64_t, SharedGeometry> shared_geometry_;  // this call's, by shared_key()
+  std::vector<std::pair<int8_t, Eigen::Vector3d>> bearings_;     // this call's, by track (state as geometry_state)
   std::vector<TrackCodes> track_codes_;
   std::vector<Hypothesis> hypotheses_;
   std::vector<Hypothesis> sorted_;  // scratch of the sort by cost
