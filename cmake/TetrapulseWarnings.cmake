@@ -4,10 +4,26 @@ target_compile_options(tetrapulse_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Woverloaded-virtual
   -Wcast-align -Wunused -Wmissing-declarations -Werror)
 
+# Each part's own tests (every tetrapulse_test() outside tests/) are built and run by
+# the asan preset too, under the sanitizers; `make check` runs them there only and turns
+# this off in the default build, which keeps tests/ (system, docs), the VM, live, ROS 2
+# and QEMU tests. Off, the executables still exist as targets, outside `all`.
+option(TETRAPULSE_PART_TESTS "Build and register each part's own tests (tetrapulse_test outside tests/)" ON)
+
 # tetrapulse_test(NAME SOURCES... LIBS...): one GoogleTest executable registered with CTest.
 function(tetrapulse_test name)
   cmake_parse_arguments(T "" "" "SOURCES;LIBS;LABELS" ${ARGN})
-  add_executable(${name} ${T_SOURCES})
+  set(tests_dir "${PROJECT_SOURCE_DIR}/tests")
+  cmake_path(IS_PREFIX tests_dir "${CMAKE_CURRENT_SOURCE_DIR}" NORMALIZE in_tests_dir)
+  set(registered ON)
+  if(NOT TETRAPULSE_PART_TESTS AND NOT in_tests_dir)
+    set(registered OFF)
+  endif()
+  if(registered)
+    add_executable(${name} ${T_SOURCES})
+  else()
+    add_executable(${name} EXCLUDE_FROM_ALL ${T_SOURCES})
+  endif()
   target_link_libraries(${name} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main tetrapulse_warnings)
   # Line tables are all a test's backtrace needs; full debug info of gtest and
   # rapidcheck templates made up a third of the tests' compile time.
@@ -18,5 +34,7 @@ function(tetrapulse_test name)
   if(NOT T_LABELS)
     set(T_LABELS unit)
   endif()
-  gtest_discover_tests(${name} PROPERTIES LABELS "${T_LABELS}" DISCOVERY_TIMEOUT 60)
+  if(registered)
+    gtest_discover_tests(${name} PROPERTIES LABELS "${T_LABELS}" DISCOVERY_TIMEOUT 60)
+  endif()
 endfunction()
