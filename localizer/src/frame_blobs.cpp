@@ -101,6 +101,19 @@ tl::expected<void, BlobInputError> FrameBlobs::extract_whole(const cv::Mat& imag
   return {};
 }
 
+namespace {
+
+// A blob outside an exact ROI's square (RoiPurpose::exact) that is far larger than
+// its marker's image: another target's marker beside it (a drone hovering 11 px from
+// another's marker took its blob in every frame its own was dark, so the other never
+// had a track of its own and was not identified again).
+bool too_large(const Blob& blob, const RoiPurpose& purpose) {
+  constexpr double kRadiusFactor = 1.5, kBlurPx = 1;
+  return purpose.exact && blob.radius > kRadiusFactor * purpose.marker_radius_px + kBlurPx;
+}
+
+}  // namespace
+
 void FrameBlobs::patch_absent_rois(const RoiPlan& plan) {
   for (size_t i = 0; i < extraction_.rois.size(); ++i) {
     RoiMeasurement& m = extraction_.rois[i];
@@ -109,7 +122,7 @@ void FrameBlobs::patch_absent_rois(const RoiPlan& plan) {
     int nearest = -1;
     double nearest_d = 2 * roi.radius;
     for (size_t b = 0; b < extraction_.blobs.size(); ++b) {
-      if (extraction_.blobs[b].look != plan.purposes[i].look) continue;
+      if (extraction_.blobs[b].look != plan.purposes[i].look || too_large(extraction_.blobs[b], plan.purposes[i])) continue;
       const double d = (extraction_.blobs[b].centroid - roi.center).norm();
       if (d < nearest_d) nearest_d = d, nearest = int(b);
     }

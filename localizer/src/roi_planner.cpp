@@ -28,10 +28,13 @@ void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const Cam
     roi.center = track.predict(mid_ns);
     roi.radius = tc.gate_radius_px + tc.gate_growth_px_per_frame * track.missed();
     roi.aperture_radius = aperture_radius_for(track);
+    bool exact = false;
+    double marker_radius = 0;
     if (const auto o = roster.owner(track.id()); o && roster[o->target].predictor.poses() >= 2) {
       Eigen::Vector2d px;
-      if (roster.project_marker(o->target, o->marker, &px)) {
+      if (roster.project_marker(o->target, o->marker, &px, &marker_radius)) {
         double radius = roster.roi_radius(o->target, mid_ns, frame_period_ns);
+        exact = roster.predicts_closely(o->target, mid_ns, frame_period_ns);
         if (track.missed() <= kMaxHintFrames && track.detections() >= 2) {
           const Eigen::Vector2d own = roi.center;
           radius = std::min(40.0, std::max(radius, 0.5 * (own - px).norm() + min_roi_radius_px));
@@ -44,7 +47,7 @@ void plan_rois(const TargetRoster& roster, const BlobTracker& tracker, const Cam
       }
     }
     plan->rois.push_back(roi);
-    plan->purposes.push_back(RoiPurpose{track.id(), std::nullopt, track.last_blob().look});
+    plan->purposes.push_back(RoiPurpose{track.id(), std::nullopt, track.last_blob().look, exact, marker_radius});
   }
   for (size_t t = 0; t < roster.size(); ++t) {
     const TrackedTarget& tt = roster[t];

@@ -28,6 +28,11 @@ struct RoiPurpose {
   int64_t track_id = -1;            // the track whose ROI this is, or -1 for a search
   std::optional<MarkerRef> search;  // the marker a search ROI looks for
   int look = 0;                     // the look (Blob::look) of the track or of the marker searched for
+  // Placed where a closely predicting target's pose puts its marker
+  // (TargetRoster::predicts_closely), whose image radius is then known (pixels):
+  // a blob outside the square and much larger is another light.
+  bool exact = false;
+  double marker_radius_px = 0;
 };
 
 struct RoiPlan {

@@ -139,6 +139,14 @@ std::optional<MarkerPose> solve(const PoseFrame& f, const Target& target, const 
   return from_confirmed();
 }
 
+// The longest code period of a target's markers, ns; 0 for constant markers.
+int64_t code_period_ns(const PoseFrame& f, const Target& target) {
+  int64_t period = 0;
+  for (const Marker& m : target.markers)
+    if (m.code) period = std::max(period, int64_t(m.code->length) * f.targets.timebase.bit_period_ns);
+  return period;
+}
+
 // Whether a pose that rests on the prediction (three markers) agrees with it:
 // within max(floor, 4 x the prediction's running error x g), g the square of the
 // frames since the last pose (an acceleration's effect on the extrapolation). The
@@ -176,7 +184,12 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
   // holds the stray blob too (identified as two drones cross, one blob pulled by
   // the other's marker fitted at 0.53 px and gave a first pose 178 mm off, its best
   // three 214 mm; the next frame fitted at 0.001 px).
-  const std::optional<double> rig_rms = tt.seed && mid == tt.last_pose_ns ? roster->rig_rms_px(t) : std::nullopt;
+  // So for a code period, until four markers have fitted within it: identified
+  // beside another drone's touching marker, the identifying fit (0.58 px) was taken
+  // for its noise, and lit frames in which that light pulled the marker gave poses
+  // 35 mm off for as long as the target was seen.
+  const bool noise_unknown = !tt.noise_known && mid - tt.identified_ns <= code_period_ns(f, target);
+  const std::optional<double> rig_rms = noise_unknown ? roster->rig_rms_px(t) : std::nullopt;
   if (rig_rms) pose_options.max_rms_px = std::min(pose_options.max_rms_px, std::max(kMinRmsGatePx, 4 * *rig_rms));
   if (f.frame_period_ns > 0) {
     const double frames = double(mid - tt.last_pose_ns) / double(f.frame_period_ns);
@@ -219,6 +232,12 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
     const bool holds_a_track = std::any_of(tt.track_of.begin(), tt.track_of.end(), [](int64_t id) { return id >= 0; });
     if (!holds_a_track || mid - tt.last_pose_ns > options.forget_after_ns) tt.forget();
     return std::nullopt;
+  }
+  // A first pose within the rig's noise says more of the target's own than the fit
+  // that identified it, which a stray blob may have pulled.
+  if (rig_rms && solved->used.size() == 4) {
+    tt.typical_rms_px = std::clamp(solved->rms_px, kMinTypicalRmsPx, std::max(tt.typical_rms_px, kMinTypicalRmsPx));
+    tt.noise_known = true;
   }
   const bool clean_four = markers.confirmed.size() == 4 && markers.unconfirmed.empty() && markers.evidence.merged.empty();
   if (clean_four && solved->used.size() < 4 && std::isfinite(solved->four_rms_px)) {

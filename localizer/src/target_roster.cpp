@@ -17,6 +17,8 @@ void TrackedTarget::identify(const std::array<int64_t, 4>& tracks, const CodeClo
   seed = pose;
   predicted = pose;
   last_pose_ns = mid_ns;
+  identified_ns = mid_ns;
+  noise_known = false;
   prediction_error_px = 2;
   prediction_error_rad = 0.1;
   prediction_error_rel = 0.1;
@@ -103,6 +105,14 @@ double TargetRoster::roi_radius(size_t t, int64_t mid_ns, int64_t frame_period_n
   const TrackedTarget& tt = tracked_[t];
   const double since = frame_period_ns > 0 ? double(mid_ns - tt.last_pose_ns) / double(frame_period_ns) : 0;
   return std::clamp(2 + 3 * tt.prediction_error_px + 1.5 * std::max(0.0, since - 1), min_roi_radius_px_, 40.0);
+}
+
+bool TargetRoster::predicts_closely(size_t t, int64_t mid_ns, int64_t frame_period_ns) const {
+  constexpr double kClosePredictionPx = 0.5, kMaxDarkFrames = 4;
+  const TrackedTarget& tt = tracked_[t];
+  if (frame_period_ns <= 0 || !tt.predicted) return false;
+  const double since = double(mid_ns - tt.last_pose_ns) / double(frame_period_ns);
+  return since <= kMaxDarkFrames && tt.prediction_error_px <= kClosePredictionPx;
 }
 
 }  // namespace tetrapulse::localizer_internal

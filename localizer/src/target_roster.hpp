@@ -43,6 +43,7 @@ struct TrackedTarget {
   std::optional<Pose> predicted;  // at this frame's mid-exposure
   std::optional<Pose> seed;       // the identification's pose, until the first measured one
   int64_t last_pose_ns = 0;
+  int64_t identified_ns = 0;
   double prediction_error_px = 2;  // running mean of |observed - predicted| marker pixels
   // Running means of how far measured poses lay from their predictions: rotation
   // angle (rad) and translation relative to the distance. They size the gate a
@@ -55,6 +56,9 @@ struct TrackedTarget {
   // another light, a stray track).
   double typical_rms_px = 0.5;
   int clean_poses = 0;  // poses of four confirmed, unmerged markers since identified
+  // Whether typical_rms_px comes from a four-marker pose within the rig's noise
+  // rather than from the identifying fit (which a stray blob may have pulled).
+  bool noise_known = false;
   TargetClock clock;
 
   // Identified by `clock` and `pose` (fitting its four markers with RMS `rms_px`)
@@ -100,6 +104,10 @@ class TargetRoster {
   // recent error, growing while no pose comes (extrapolating further, the
   // regression's error grows with the acceleration). frame_period_ns 0: unknown yet.
   double roi_radius(size_t t, int64_t mid_ns, int64_t frame_period_ns) const;
+  // Whether target t was posed within the last few frames (a dark run) and its
+  // predictions have been hitting its markers within half a pixel: its markers'
+  // image radii are then known, and a much larger blob beside one is another light.
+  bool predicts_closely(size_t t, int64_t mid_ns, int64_t frame_period_ns) const;
   // The rig's centroid noise: the median typical_rms_px of the identified targets
   // with at least kSettledPoses clean poses, other than `t`; none without one.
   std::optional<double> rig_rms_px(size_t t) const;
