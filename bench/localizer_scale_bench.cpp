@@ -4,6 +4,7 @@
 //   BM_LocalizerFullFrameTargets/N: every frame searched whole, with one more
 //                                   target that never shows (as while one is
 //                                   missing), per frame.
+//   BM_LocalizerTrackingTargetsSequence/N: the tracked frames once, for callgrind.
 //   BM_LocalizerAcquisitionTargets/N: a fresh localizer over its first 40
 //                                   frames, which identify the N new targets
 //                                   (16-bit codes: one bit per frame); per
@@ -36,6 +37,29 @@ void BM_LocalizerTrackingTargets(benchmark::State& state) {
   time_frames(state, s, s.scenario.targets, {});
 }
 BENCHMARK(BM_LocalizerTrackingTargets)->Arg(1)->Arg(4)->Arg(8)->Arg(16)->Arg(32)->Arg(64)->Unit(benchmark::kMicrosecond);
+
+// Frames kWarmUp to the sequence's end once, for instruction counts per stage:
+// valgrind --tool=callgrind --toggle-collect='*scale_tracking_frames*' counts these
+// calls only. Not inlined, so that callgrind can name it.
+[[gnu::noinline]] void scale_tracking_frames(Localizer* localizer, const Sequence& s) {
+  bench::feed(localizer, s, kWarmUp, int(s.images.size()));
+}
+
+void BM_LocalizerTrackingTargetsSequence(benchmark::State& state) {
+  cv::setNumThreads(1);
+  const Sequence& s = bench::scale_sequence(int(state.range(0)));
+  for (auto _ : state) {
+    state.PauseTiming();
+    Localizer localizer(s.scenario.camera, s.scenario.targets);
+    bench::feed(&localizer, s, 0, kWarmUp);
+    state.ResumeTiming();
+    scale_tracking_frames(&localizer, s);
+  }
+  state.counters["per_frame_us"] =
+      benchmark::Counter(double(s.images.size() - kWarmUp) * 1e-6,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_LocalizerTrackingTargetsSequence)->Arg(4)->Arg(32)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 void BM_LocalizerFullFrameTargets(benchmark::State& state) {
   const Sequence& s = bench::scale_sequence(int(state.range(0)));

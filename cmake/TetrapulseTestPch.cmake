@@ -8,7 +8,7 @@ find_package(OpenCV 4 REQUIRED COMPONENTS core)
 add_library(tetrapulse_test_pch STATIC ${CMAKE_CURRENT_LIST_DIR}/pch/test_pch.cpp)
 target_link_libraries(tetrapulse_test_pch PRIVATE GTest::gtest rapidcheck Eigen3::Eigen opencv_core tetrapulse_warnings)
 target_include_directories(tetrapulse_test_pch PRIVATE ${OpenCV_INCLUDE_DIRS})
-target_compile_options(tetrapulse_test_pch PRIVATE -g1)
+target_compile_options(tetrapulse_test_pch PRIVATE -g1 ${TETRAPULSE_TEST_OPT})
 target_precompile_headers(tetrapulse_test_pch PRIVATE
   <algorithm> <array> <cmath> <cstdint> <cstdio> <functional> <map> <memory> <optional>
   <string> <string_view> <utility> <vector>

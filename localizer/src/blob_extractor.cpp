@@ -149,9 +149,11 @@ class ExtractorScratch {
       groups.push_back(roi_windows[i]);
     }
     // Overlapping windows join (union-find, a component's root its first window),
-    // then the joined windows are checked again, until none overlap: O(G^2) a round
-    // (merging one pair a scan was O(G^3) when the ROIs of 32 targets overlap). The
-    // groups keep the order of their first ROI.
+    // then the joined windows are checked again, until none overlap (merging one
+    // pair a scan was O(G^3) when the ROIs of 32 targets overlap). Pairs are found
+    // by a sweep over the windows sorted by left edge, so that a window is compared
+    // only with those that start before it ends (all pairs were 8128 tests a round
+    // for 32 targets' 128 ROIs). The groups keep the order of their first ROI.
     for (bool joined = true; joined;) {
       joined = false;
       const size_t g = groups.size();
@@ -161,14 +163,20 @@ class ExtractorScratch {
         while (parent[size_t(i)] != i) i = parent[size_t(i)] = parent[size_t(parent[size_t(i)])];
         return i;
       };
-      for (size_t a = 0; a < g; ++a)
-        for (size_t b = a + 1; b < g; ++b) {
-          if ((groups[a] & groups[b]).empty()) continue;
-          const int ra = root(int(a)), rb = root(int(b));
+      by_left.resize(g);
+      for (size_t i = 0; i < g; ++i) by_left[i] = int(i);
+      std::sort(by_left.begin(), by_left.end(), [&](int a, int b) { return groups[size_t(a)].x < groups[size_t(b)].x; });
+      for (size_t p = 0; p < g; ++p) {
+        const cv::Rect& a = groups[size_t(by_left[p])];
+        for (size_t q = p + 1; q < g && groups[size_t(by_left[q])].x < a.x + a.width; ++q) {
+          const cv::Rect& b = groups[size_t(by_left[q])];
+          if (b.y >= a.y + a.height || a.y >= b.y + b.height) continue;
+          const int ra = root(by_left[p]), rb = root(by_left[q]);
           if (ra == rb) continue;
           parent[size_t(std::max(ra, rb))] = std::min(ra, rb);
           joined = true;
         }
+      }
       if (!joined) break;
       renumber.assign(g, -1);
       size_t kept = 0;
@@ -252,7 +260,7 @@ class ExtractorScratch {
   std::vector<cv::Rect> roi_windows;
   std::vector<int> group_of;  // group of each ROI; -1: outside the image
   std::vector<cv::Rect> groups;
-  std::vector<int> parent, renumber;  // group_windows' union-find
+  std::vector<int> parent, renumber, by_left;  // group_windows' union-find and sweep
   std::vector<int> members;  // ROIs of the group being processed
   std::vector<size_t> group_blobs;
   std::vector<Eigen::Vector2d> centres;  // of the group's ROIs that split merged blobs

@@ -187,11 +187,13 @@ TEST(DatasetSimulation, SameScenarioAndSeedGiveIdenticalBytes) {
   for (const BuiltinScenario& b : builtin_scenarios()) {
     SCOPED_TRACE(b.name);
     const Scenario s = builtin(b.name);
-    const int64_t frames = b.name == "swarm" ? 3 : 10;
+    // Six frames carry every per-frame state (noise streams, boards' clocks, codes)
+    // past its start; another seed needs only its first image to differ.
+    const int64_t frames = b.name == "swarm" ? 3 : 6;
     TempDir first, second, other_seed;
     simulate(s, first.str(), frames);
     simulate(s, second.str(), frames);
-    simulate(s, other_seed.str(), frames, s.seed + 1);
+    simulate(s, other_seed.str(), 1, s.seed + 1);
     const auto a = hash_tree(first.str());
     const auto c = hash_tree(other_seed.str());
     EXPECT_GE(a.size(), static_cast<size_t>(5 + 1));
