@@ -48,4 +48,26 @@ inline void time_frames(benchmark::State& state, const Sequence& s, const Target
   state.counters["whole_image_share"] = double(searched) / double(state.iterations());
 }
 
+// Frames [from, end) of a sequence through a localizer, in a function that is not
+// inlined, so that callgrind --toggle-collect can name it.
+using SequenceFrames = void (*)(Localizer*, const Sequence&, int from);
+
+// Frames `warm_up` to the end of `s` once per iteration through `frames`, after
+// `warm_up` untimed ones into a fresh localizer: the same frames every run, for
+// instruction counts. Counter: per_frame_us.
+inline void time_sequence(benchmark::State& state, const Sequence& s, const TargetsFile& targets,
+                          const LocalizerOptions& options, int warm_up, SequenceFrames frames) {
+  cv::setNumThreads(1);
+  for (auto _ : state) {
+    state.PauseTiming();
+    Localizer localizer(s.scenario.camera, targets, options);
+    feed(&localizer, s, 0, warm_up);
+    state.ResumeTiming();
+    frames(&localizer, s, warm_up);
+  }
+  state.counters["per_frame_us"] =
+      benchmark::Counter(double(s.images.size() - size_t(warm_up)) * 1e-6,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace tetrapulse::bench

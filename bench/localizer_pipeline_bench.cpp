@@ -37,12 +37,8 @@ namespace {
 
 using namespace tetrapulse;
 
-constexpr int kFrames = bench::kSequenceFrames;
 using bench::Sequence;
 const Sequence& sequence() { return bench::four_targets_sequence(); }
-
-// Runs frames [from, to) through `localizer`.
-void feed(Localizer* localizer, int from, int to) { bench::feed(localizer, sequence(), from, to); }
 
 // Times one frame per iteration from frame `warm_up` on (localizer_frame_timing.hpp).
 void time_frames(benchmark::State& state, const TargetsFile& targets, const LocalizerOptions& options, int warm_up) {
@@ -76,21 +72,12 @@ BENCHMARK(BM_LocalizerTracking)->Unit(benchmark::kMicrosecond);
 // Frames 30 to 239 once, after 30 untimed ones: the same frames every run, for
 // instruction counts (callgrind --toggle-collect='*sequence_frames*' counts
 // these calls only). Not inlined, so that callgrind can name it.
-[[gnu::noinline]] void sequence_frames(Localizer* localizer) { feed(localizer, 30, kFrames); }
+[[gnu::noinline]] void sequence_frames(Localizer* localizer, const Sequence& s, int from) {
+  bench::feed(localizer, s, from, int(s.images.size()));
+}
 
 void whole_sequence(benchmark::State& state, const TargetsFile& targets, const LocalizerOptions& options) {
-  cv::setNumThreads(1);
-  const Sequence& s = sequence();
-  for (auto _ : state) {
-    state.PauseTiming();
-    Localizer localizer(s.scenario.camera, targets, options);
-    feed(&localizer, 0, 30);
-    state.ResumeTiming();
-    sequence_frames(&localizer);
-  }
-  state.counters["per_frame_us"] = benchmark::Counter(double(kFrames - 30) * 1e-6,
-                                                      benchmark::Counter::kIsIterationInvariantRate |
-                                                          benchmark::Counter::kInvert);
+  bench::time_sequence(state, sequence(), targets, options, 30, sequence_frames);
 }
 
 void BM_LocalizerFullFrameSequence(benchmark::State& state) {

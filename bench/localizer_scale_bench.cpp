@@ -41,23 +41,13 @@ BENCHMARK(BM_LocalizerTrackingTargets)->Arg(1)->Arg(4)->Arg(8)->Arg(16)->Arg(32)
 // Frames kWarmUp to the sequence's end once, for instruction counts per stage:
 // valgrind --tool=callgrind --toggle-collect='*scale_tracking_frames*' counts these
 // calls only. Not inlined, so that callgrind can name it.
-[[gnu::noinline]] void scale_tracking_frames(Localizer* localizer, const Sequence& s) {
-  bench::feed(localizer, s, kWarmUp, int(s.images.size()));
+[[gnu::noinline]] void scale_tracking_frames(Localizer* localizer, const Sequence& s, int from) {
+  bench::feed(localizer, s, from, int(s.images.size()));
 }
 
 void BM_LocalizerTrackingTargetsSequence(benchmark::State& state) {
-  cv::setNumThreads(1);
   const Sequence& s = bench::scale_sequence(int(state.range(0)));
-  for (auto _ : state) {
-    state.PauseTiming();
-    Localizer localizer(s.scenario.camera, s.scenario.targets);
-    bench::feed(&localizer, s, 0, kWarmUp);
-    state.ResumeTiming();
-    scale_tracking_frames(&localizer, s);
-  }
-  state.counters["per_frame_us"] =
-      benchmark::Counter(double(s.images.size() - kWarmUp) * 1e-6,
-                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  bench::time_sequence(state, s, s.scenario.targets, {}, kWarmUp, scale_tracking_frames);
 }
 BENCHMARK(BM_LocalizerTrackingTargetsSequence)->Arg(4)->Arg(32)->Iterations(1)->Unit(benchmark::kMillisecond);
 

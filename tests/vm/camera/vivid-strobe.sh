@@ -10,7 +10,7 @@
 # (irq_handler_entry, CLOCK_MONOTONIC; the first frame only inside its pulse's
 # write, see vivid_strobe_probe); frames the strobe missed
 # (the VM woke the pulser late) are counted by record and bounded here.
-# The tolerance: 2-23 µs on a quiet host, 116 µs with the system tests running
+# The tolerance: 15-23 µs measured on a quiet host, 116 µs with the system tests running
 # beside the VM (gpio-sim's edge events are stamped in a threaded handler, which a
 # loaded TCG guest wakes late); 1 ms still tells a pulse's rising edge from its
 # falling one (2 ms apart) and one pulse from the next (66.7 ms).
