@@ -21,6 +21,7 @@ void CentroidModel::weigh(const CameraModel& camera, const Target& target, const
   o.marker_diameter_m = target.marker_diameter_m;
   o.sphere_centroid = other == 0;
   o.sigma_px = sigma_px;
+  o.covariance = false;  // only its residual is weighed
   const auto refined = refine_pose(camera, observations_, pose, o);
   if (!refined) return;  // a marker out of view under the other model: not a pose to weigh
   ssr[other] = refined->rms_px * refined->rms_px * double(observations_.size());

@@ -135,6 +135,50 @@ class ReprojectionProblem {
   std::vector<Eigen::Vector2d> partner_offsets_;
 };
 
+// A 6 x 6 symmetric positive definite system by Cholesky, A = L L^T, in loops the
+// compiler unrolls: Eigen's LLT of a fixed 6 x 6 runs its generic blocked-column
+// code, and the normal equations are factored twice per Levenberg-Marquardt
+// iteration. ok() is false unless every pivot is positive (and finite).
+class Cholesky6 {
+ public:
+  explicit Cholesky6(const Matrix6& A) {
+    for (int j = 0; j < 6; ++j) {
+      double d = A(j, j);
+      for (int k = 0; k < j; ++k) d -= L_[j][k] * L_[j][k];
+      if (!(d > 0) || !std::isfinite(d)) return;
+      inv_diag_[j] = 1 / std::sqrt(d);
+      for (int i = j + 1; i < 6; ++i) {
+        double s = A(i, j);
+        for (int k = 0; k < j; ++k) s -= L_[i][k] * L_[j][k];
+        L_[i][j] = s * inv_diag_[j];
+      }
+    }
+    ok_ = true;
+  }
+  bool ok() const { return ok_; }
+  // A^-1 b (forward, then back substitution).
+  Vector6 solve(const Vector6& b) const {
+    double y[6];
+    for (int i = 0; i < 6; ++i) {
+      double s = b(i);
+      for (int k = 0; k < i; ++k) s -= L_[i][k] * y[k];
+      y[i] = s * inv_diag_[i];
+    }
+    Vector6 x;
+    for (int i = 5; i >= 0; --i) {
+      double s = y[i];
+      for (int k = i + 1; k < 6; ++k) s -= L_[k][i] * x(k);
+      x(i) = s * inv_diag_[i];
+    }
+    return x;
+  }
+
+ private:
+  double L_[6][6] = {};
+  double inv_diag_[6] = {};
+  bool ok_ = false;
+};
+
 Pose step(const Pose& pose, const Vector6& delta) {
   return Pose{so3_exp(delta.head<3>()) * pose.R, pose.t + delta.tail<3>()};
 }
@@ -155,9 +199,9 @@ bool levenberg_marquardt(const ReprojectionProblem& problem, size_t markers, int
   // marker is no progress.
   const double negligible = 1e-20 * double(markers);
   auto at_minimum = [&] {
-    const Eigen::LLT<Matrix6> llt(H);
     if (cost <= negligible) return true;
-    if (llt.info() != Eigen::Success) return false;
+    const Cholesky6 llt(H);
+    if (!llt.ok()) return false;
     const double decrease = g.dot(llt.solve(g));
     return std::isfinite(decrease) && decrease <= std::max(1e-9 * cost, negligible);
   };
@@ -167,9 +211,10 @@ bool levenberg_marquardt(const ReprojectionProblem& problem, size_t markers, int
     ++out->iterations;
     Matrix6 A = H;
     A.diagonal() += lambda * H.diagonal().cwiseMax(1e-12 * H.diagonal().maxCoeff());
-    const Eigen::LLT<Matrix6> llt(A);
+    const Cholesky6 llt(A);
+    if (!llt.ok()) return false;
     const Vector6 delta = -llt.solve(g);
-    if (llt.info() != Eigen::Success || !delta.allFinite()) return false;
+    if (!delta.allFinite()) return false;
     const Pose candidate = step(out->pose, delta);
     // H and g at the candidate come with its cost: most steps are taken, and a
     // taken step needs them next.
@@ -239,10 +284,15 @@ tl::expected<RefinedPose, RefinementError> refine_pose(const CameraModel& camera
   // Covariance sigma^2 (J^T W J)^-1; sigma given, or estimated with 2n - 6 degrees of freedom.
   Matrix6 H, W;
   Vector6 g;
-  problem.evaluate(out.pose, &cost, &squared, &H, &g, &W);
+  if (options.covariance) {
+    problem.evaluate(out.pose, &cost, &squared, &H, &g, &W);
+  } else {
+    problem.evaluate(out.pose, &cost, &squared);
+  }
   out.rms_px = std::sqrt(squared / markers.size());
   const int dof = 2 * int(markers.size()) - 6;
   out.sigma_px = options.sigma_px > 0 ? options.sigma_px : (dof > 0 ? std::sqrt(squared / dof) : 0);
+  if (!options.covariance) return out;
   const Eigen::LDLT<Matrix6> ldlt(W);
   if (out.sigma_px > 0 && ldlt.info() == Eigen::Success && ldlt.isPositive() &&
       ldlt.vectorD().minCoeff() > 1e-12 * ldlt.vectorD().maxCoeff()) {

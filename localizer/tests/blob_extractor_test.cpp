@@ -681,6 +681,22 @@ TEST(BlobExtractor, RoiModeFindsSeedsJustAtTheThresholdAnywhereInTheWindow) {
     }
 }
 
+TEST(BlobExtractor, FindsSeedsJustAtTheThresholdAtEveryColumnOfAWholeImage) {
+  // The whole-image seed search skips background 64 pixels at a time, then 8: a
+  // plateau one grey level above F1 at every column, in rows of 150 (two full
+  // 64-pixel steps and a tail), with seeds below and above 128, is found where it is.
+  for (const int background : {20, 150})
+    for (int x = 1; x <= 147; ++x) {
+      cv::Mat1b img(20, 150, uint8_t(background));
+      img(cv::Rect(x, 9, 2, 2)).setTo(background + 9);
+      const auto out = extract(img, 1);
+      ASSERT_EQ(out.blobs.size(), 1u) << "background " << background << ", column " << x;
+      EXPECT_EQ(out.blobs[0].origin, BlobOrigin::kThreshold) << "background " << background << ", column " << x;
+      EXPECT_LT((out.blobs[0].centroid - Eigen::Vector2d(x + 0.5, 9.5)).norm(), 1e-9)
+          << "background " << background << ", column " << x;
+    }
+}
+
 TEST(BlobExtractor, RoiModeWorksOnDarkAnd16BitImages) {
   auto img = canvas(100, 80, 40000);
   const Eigen::Vector2d c(30.4, 50.7);

@@ -82,6 +82,30 @@ TEST_P(PoseRefinement, ConvergesToTheTruePoseFromPerturbedStarts) {
   }
 }
 
+TEST_P(PoseRefinement, WithoutTheCovarianceGivesTheSamePoseAndResidual) {
+  std::mt19937_64 rng(43);
+  RefinementOptions with;
+  with.marker_diameter_m = 0.03;
+  RefinementOptions without = with;
+  without.covariance = false;
+  for (int i = 0; i < 50; ++i) {
+    const Pose truth = random_visible_pose(rng, camera_, target_, 0.5, 4.0, 2.0);
+    const auto obs = observations(target_, observe(rng, camera_, target_, truth, 0.1));
+    const Pose start = perturbed(rng, truth, 5 * M_PI / 180, 0.05);
+    const auto a = refine_pose(camera_, obs, start, with);
+    const auto b = refine_pose(camera_, obs, start, without);
+    ASSERT_EQ(bool(a), bool(b));
+    if (!a) continue;
+    EXPECT_TRUE(a->has_covariance);
+    EXPECT_FALSE(b->has_covariance);
+    EXPECT_EQ(a->pose.R, b->pose.R);
+    EXPECT_EQ(a->pose.t, b->pose.t);
+    EXPECT_EQ(a->rms_px, b->rms_px);
+    EXPECT_EQ(a->sigma_px, b->sigma_px);
+    EXPECT_EQ(a->iterations, b->iterations);
+  }
+}
+
 TEST_P(PoseRefinement, CovarianceAgreesWithMonteCarlo) {
   // 1000 noisy views of each of three poses; the empirical covariance of the refined
   // (w, v) against the predicted sigma^2 (J^T J)^-1, sigma given and sigma estimated.

@@ -46,6 +46,9 @@ struct RefinementOptions {
   // the first-order pinhole correction is off by up to 0.36 px on our wide
   // plumb_bob camera; sphere_image_test.cpp).
   bool sphere_centroid = true;
+  // False: the pose and its residual only (RefinedPose::has_covariance false), for a
+  // caller that compares fits (it saves a third of a tracked pose's refinement).
+  bool covariance = true;
 };
 
 struct RefinedPose {
@@ -58,7 +61,8 @@ struct RefinedPose {
   // Huber weights (identity without Huber).
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
   double sigma_px = 0;           // the sigma used (given or estimated)
-  // False with three markers and no sigma_px given, or where J^T W J is singular.
+  // False with three markers and no sigma_px given, where J^T W J is singular, or when
+  // RefinementOptions::covariance is off.
   bool has_covariance = false;
 };
 
