@@ -246,22 +246,20 @@ void RegionGrower::grow_from(const cv::Mat& work, cv::Rect window, int seed, int
   region.label = next_label_++;
   region.begin = static_cast<int>(pixels_.size());
   const int sy = seed / width, sx = seed - sy * width;
-  int min_x = sx, max_x = sx, min_y = sy, max_y = sy;
-  labels_[size_t(seed)] = region.label;
+  const int32_t label_value = region.label;
+  labels_[size_t(seed)] = label_value;
   pixels_.push_back(seed);
   // The queue is indexed, and grows (rarely: to the largest region yet) only when full.
   if (queue_.empty()) queue_.resize(256);
   size_t tail = 0;
   queue_[tail++] = {sx, sy};
-  const auto take = [&](int nx, int ny, int32_t* label) {
-    *label = region.label;
+  // Inlined, with nothing but locals and the two lists: as a called lambda updating
+  // the bounding box through its captures it cost more than the neighbour tests.
+  const auto take = [&](int nx, int ny, int32_t* label) __attribute__((always_inline)) {
+    *label = label_value;
     pixels_.push_back(ny * width + nx);
     if (tail == queue_.size()) queue_.resize(2 * tail);
     queue_[tail++] = {nx, ny};
-    min_x = std::min(min_x, nx);
-    max_x = std::max(max_x, nx);
-    min_y = std::min(min_y, ny);
-    max_y = std::max(max_y, ny);
   };
   // The 8 neighbours row by row, as offsets in the labels and in the image.
   static constexpr int kDx[8] = {-1, 0, 1, -1, 1, -1, 0, 1}, kDy[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
@@ -292,6 +290,15 @@ void RegionGrower::grow_from(const cv::Mat& work, cv::Rect window, int seed, int
       for (int nx = std::max(px - 1, x0); nx <= std::min(px + 1, x1 - 1); ++nx)
         if (nlabels[nx] == 0 && nrow[nx] >= keep_min) take(nx, ny, nlabels + nx);
     }
+  }
+  // The bounding box, from the queue (which holds every pixel taken).
+  int min_x = sx, max_x = sx, min_y = sy, max_y = sy;
+  for (size_t k = 1; k < tail; ++k) {
+    const auto [qx, qy] = queue_[k];
+    min_x = std::min(min_x, qx);
+    max_x = std::max(max_x, qx);
+    min_y = std::min(min_y, qy);
+    max_y = std::max(max_y, qy);
   }
   region.box = cv::Rect(min_x, min_y, max_x - min_x + 1, max_y - min_y + 1);
   region.end = static_cast<int>(pixels_.size());
