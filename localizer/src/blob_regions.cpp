@@ -40,7 +40,7 @@ bool any_byte_at_least(uint64_t word, int level) {
 // then 8 at a time, so that the x returned is the same 8-pixel chunk either way
 // (most of an image or ROI window is background). A byte reaches the level when
 // its saturating difference from level - 1 is not zero (SSE2 on x86-64, NEON on
-// ARM).
+// aarch64; elsewhere 8 at a time throughout).
 int skip_below(const uint8_t* row, int x, int end, int level) {
 #if defined(__SSE2__)
   const __m128i below = _mm_set1_epi8(static_cast<char>(level - 1));
