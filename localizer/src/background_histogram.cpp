@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace tetrapulse::blob_internal {
 namespace {
@@ -31,10 +34,10 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
     bins_.resize(256);
     // Background pixels fill a few bins: counted into one histogram, each count
     // waits for the previous one to the same bin. Four interleaved histograms
-    // pay for their clearing already in a 27 x 27 ROI window.
-    partial_.resize(4 * 256);
+    // pay for their clearing already in a 27 x 27 ROI window. They are all zero
+    // between calls: the sum below clears them as it reads them.
+    partial_.resize(4 * 256, 0);
     uint32_t* h = partial_.data();
-    std::memset(h, 0, partial_.size() * sizeof(uint32_t));
     // A whole image's statistics need no more than every other row (180 000
     // pixels of 752 x 480): its count was a fifth of a full-frame search.
     const int step = window.area() >= kRowStepArea ? 2 : 1;
@@ -50,7 +53,28 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
       }
       for (; x < window.width; ++x) ++h[p[x]];
     }
-    for (int b = 0; b < 256; ++b) bins_[b] = h[b] + h[256 + b] + h[512 + b] + h[768 + b];
+    uint32_t* bins = bins_.data();
+    int b = 0, first = 256, last = -1;  // occupied bins lie in [first, last + 3]
+#if defined(__SSE2__)
+    // Four bins at a time: the sum was a third of a ROI window's count.
+    const auto at = [](uint32_t* p) { return reinterpret_cast<__m128i*>(p); };
+    for (; b < 256; b += 4) {
+      const __m128i sum = _mm_add_epi32(_mm_add_epi32(_mm_loadu_si128(at(h + b)), _mm_loadu_si128(at(h + 256 + b))),
+                                        _mm_add_epi32(_mm_loadu_si128(at(h + 512 + b)), _mm_loadu_si128(at(h + 768 + b))));
+      _mm_storeu_si128(at(bins + b), sum);
+      for (int k = 0; k < 4; ++k) _mm_storeu_si128(at(h + 256 * k + b), _mm_setzero_si128());
+      if (_mm_movemask_epi8(_mm_cmpeq_epi32(sum, _mm_setzero_si128())) != 0xFFFF) {
+        first = std::min(first, b);
+        last = b;
+      }
+    }
+#endif
+    for (; b < 256; ++b) {
+      bins[b] = h[b] + h[256 + b] + h[512 + b] + h[768 + b];
+      h[b] = h[256 + b] = h[512 + b] = h[768 + b] = 0;
+      if (bins[b] != 0) first = std::min(first, b), last = b;
+    }
+    find_occupied(first, std::min(last + 3, 255));
     return;
   }
   // 16-bit: bins as wide as the data's quantum (a 10- or 12-bit sensor shifted
@@ -90,20 +114,27 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
   bins_.assign(static_cast<size_t>(std::min(used_, kMaxBins)), 0);
   if (full) {
     for (unsigned v = 0; v <= top; ++v) bins_[v >> shift_] += full_[v];
-    return;
+  } else {
+    for (int y = window.y; y < window.y + window.height; ++y) {
+      const uint16_t* p = image.ptr<uint16_t>(y) + window.x;
+      for (int x = 0; x < window.width; ++x) ++bins_[p[x] >> shift_];
+    }
   }
-  for (int y = window.y; y < window.y + window.height; ++y) {
-    const uint16_t* p = image.ptr<uint16_t>(y) + window.x;
-    for (int x = 0; x < window.width; ++x) ++bins_[p[x] >> shift_];
-  }
+  find_occupied(0, int(bins_.size()) - 1);
+}
+
+void BackgroundHistogram::find_occupied(int from, int to) {
+  lo_ = from;
+  hi_ = to;
+  while (lo_ <= hi_ && bins_[size_t(lo_)] == 0) ++lo_;
+  while (hi_ >= lo_ && bins_[size_t(hi_)] == 0) --hi_;
 }
 
 BackgroundFit BackgroundHistogram::fit_background(double saturation) const {
   BackgroundFit fit;
   if (total_ == 0) return fit;
   const int n = used_;
-  int top = n - 1;
-  while (top > 0 && bins_[top] == 0) --top;
+  int top = std::max(hi_, 0);
   int below = top - 1;
   while (below >= 0 && bins_[below] == 0) --below;
   const bool clipped_top = below >= 0 && (bin_centre(top) >= saturation - 0.5 * bin_width() ||
@@ -171,9 +202,8 @@ BackgroundFit BackgroundHistogram::fit_background(double saturation) const {
 }
 
 double BackgroundHistogram::otsu() const {
-  int lo = 0, hi = std::min(used_, static_cast<int>(bins_.size())) - 1;
-  while (lo < hi && bins_[lo] == 0) ++lo;
-  while (hi > lo && bins_[hi] == 0) --hi;
+  if (lo_ > hi_) return -1;
+  const int lo = lo_, hi = hi_;
   // An empty bin leaves the split as it was: only the others are visited. They
   // are listed first without a branch each (marker pixels leave empty bins
   // between full ones at random, and each such branch would be a coin toss).

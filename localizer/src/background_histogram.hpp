@@ -44,11 +44,15 @@ class BackgroundHistogram {
   // Mean of the values a bin can hold: multiples of the data's quantum.
   double bin_centre(double bin) const { return bin * (1 << shift_) + ((1 << shift_) - quantum_) * 0.5; }
 
+  // The first and last occupied bins within [from, to] (lo_ > hi_: none there).
+  void find_occupied(int from, int to);
+
   std::vector<uint32_t> bins_;
   std::vector<uint32_t> partial_;  // 4 interleaved 8-bit histograms (fewer store-to-load stalls)
   std::vector<uint32_t> full_;     // every 16-bit value (large windows)
   mutable std::vector<uint32_t> merged_;  // fit_background's scratch: neighbouring bins merged
   int used_ = 0;                   // bins in use
+  int lo_ = 0, hi_ = -1;           // the first and last occupied bins
   int shift_ = 0;
   int quantum_ = 1;  // step between the values the data holds (16-bit data from a 10- or 12-bit sensor)
   uint32_t total_ = 0;

@@ -101,20 +101,20 @@ Aperture measure_aperture_typed(const cv::Mat& work, cv::Rect window, const Leve
   Aperture a;
   const cv::Rect box = square_window(c, radius, work.size()) & window;
   const double r2 = radius * radius;
-  a.peak = -std::numeric_limits<double>::infinity();
+  int top = -1;  // the peak and clipping follow from it (v - background rises with v)
   for (int y = box.y; y < box.y + box.height; ++y) {
     const T* row = work.ptr<T>(y);
     int first = 0, last = -1;
     if (!disc_columns(c.x(), (y - c.y()) * (y - c.y()), r2, box.x, box.x + box.width - 1, &first, &last)) continue;
     for (int x = first; x <= last; ++x) {
-      const double v = row[x];
-      a.sum += v - levels.background;
-      ++a.pixels;
-      a.peak = std::max(a.peak, v - levels.background);
-      a.saturated = a.saturated || v >= levels.saturation;
+      a.sum += double(row[x]) - levels.background;
+      top = std::max(top, int(row[x]));
     }
+    a.pixels += last - first + 1;
   }
-  if (a.pixels == 0) a.peak = 0;
+  if (a.pixels == 0) return a;
+  a.peak = double(top) - levels.background;
+  a.saturated = top >= levels.saturation;
   return a;
 }
 

@@ -663,12 +663,13 @@ TEST(BlobExtractor, RoiModeReportsBlobsNoRoiTook) {
 TEST(BlobExtractor, RoiModeFindsSeedsJustAtTheThresholdAnywhereInTheWindow) {
   // A noiseless background B and a 3 x 3 plateau at B + 9: sigma is floored at
   // 1, Otsu splits at B + 0.5, so F1 = B + 8 and the plateau's pixels are the
-  // lowest value that seeds. The seed search skips background 8 pixels at a
-  // time: at every column offset within such a step and up to the window's
-  // last columns, and with seeds below and above 128, the plateau is found by
-  // the thresholds, not by the dim-marker recovery.
+  // lowest value that seeds. The seed search reads the 29-pixel rows of the
+  // window 16 pixels at a time, the last 16 overlapping the first (8 at a time
+  // where SSE2 is missing): at every column offset, the plateau reaching the
+  // window's second and second-last columns, and with seeds below and above 128,
+  // the plateau is found by the thresholds, not by the dim-marker recovery.
   for (const int background : {20, 150})
-    for (int offset = -11; offset <= 11; ++offset) {
+    for (int offset = -12; offset <= 12; ++offset) {
       cv::Mat1b img(60, 80, uint8_t(background));
       img(cv::Rect(40 + offset - 1, 29, 3, 3)).setTo(background + 9);
       BlobExtractor extractor;
