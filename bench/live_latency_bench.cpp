@@ -8,7 +8,14 @@
 // reassembly + hand-over + localizer + output. The benchmark's time is the mean over
 // frames (manual time); p50_ms/p99_ms the nearest-rank percentiles.
 //   BM_LiveGvspLatency/L: L per thousand GVSP packets lost (resent on request).
-// Opens sockets: run it through tests/netns/isolated (loopback only, by address).
+//   BM_LiveGvspHeadroom/W: the live loop's host CPU per frame against the camera's
+//     frame period, no loss: W = 752, the four-targets scene (752x480) at 100 Hz;
+//     W = 1280, the scale scene's 16 targets (1280x960, scale_targets_sequence.hpp)
+//     at 60 Hz. Host CPU is the process's less the fake camera's thread: Aravis'
+//     stream thread reassembling GVSP, and the loop grabbing, localizing and
+//     formatting. Counters host_cpu_ms (per frame) and headroom (period / that).
+// Both report both sets of counters. Opens sockets: run it through
+// tests/netns/isolated (loopback only, by address).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -18,6 +25,8 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <pthread.h>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -25,6 +34,7 @@
 
 #include "../tests/live/fake_gige_server.hpp"
 #include "four_targets_sequence.hpp"
+#include "scale_targets_sequence.hpp"
 #include "tetrapulse/datasets/pose_writer.hpp"
 #include "tetrapulse/host/camera.hpp"
 #include "tetrapulse/host/rig_clock.hpp"
@@ -71,15 +81,23 @@ int64_t percentile(std::vector<int64_t> v, double p) {
   return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
 }
 
-void BM_LiveGvspLatency(benchmark::State& state) {
+// CPU time of a clock (process or thread), ns.
+int64_t cpu_ns(clockid_t clock) {
+  timespec t{};
+  clock_gettime(clock, &t);
+  return int64_t(t.tv_sec) * 1000000000 + t.tv_nsec;
+}
+
+// `seq` served at `rate_hz` with `lost_per_thousand` GVSP packets lost, one frame an
+// iteration.
+void run_live(benchmark::State& state, const bench::Sequence& seq, double rate_hz, int64_t lost_per_thousand) {
   cv::setNumThreads(1);
-  const bench::Sequence& seq = bench::four_targets_sequence();
   Served served;
   served.sequence = &seq;
   served.fake = arv_fake_camera_new("TP-BENCH-1");
   arv_fake_camera_set_fill_pattern(served.fake, fill, &served);
   live_test::FakeGigeOptions o;
-  o.lost_ratio = static_cast<double>(state.range(0)) / 1000.0;
+  o.lost_ratio = static_cast<double>(lost_per_thousand) / 1000.0;
   live_test::FakeGigeCounters sent;
   std::atomic<bool> stop{false};
   std::thread server([&] { live_test::serve_fake_gige(served.fake, o, 600, stop, &sent); });
@@ -99,7 +117,7 @@ void BM_LiveGvspLatency(benchmark::State& state) {
   settings.width = seq.scenario.camera.width;
   settings.height = seq.scenario.camera.height;
   settings.pixel_format = "Mono8";
-  settings.frame_rate_hz = 100;
+  settings.frame_rate_hz = rate_hz;
   if (auto c = (*camera)->configure(settings); !c || !(*camera)->start()) {
     finish();
     state.SkipWithError("aravis:127.0.0.1: configure/start failed");
@@ -108,6 +126,9 @@ void BM_LiveGvspLatency(benchmark::State& state) {
   Localizer localizer(seq.scenario.camera, seq.scenario.targets, LocalizerOptions{});
   std::vector<int64_t> latency;
   int64_t poses = 0, bad = 0;
+  clockid_t server_clock{};
+  const bool server_timed = pthread_getcpuclockid(server.native_handle(), &server_clock) == 0;
+  const int64_t process0 = cpu_ns(CLOCK_PROCESS_CPUTIME_ID), server0 = server_timed ? cpu_ns(server_clock) : 0;
   for (auto _ : state) {
     auto f = (*camera)->grab(2000);
     if (!f || !*f) {
@@ -140,6 +161,7 @@ void BM_LiveGvspLatency(benchmark::State& state) {
     latency.push_back(ns);
     state.SetIterationTime(static_cast<double>(ns) * 1e-9);
   }
+  const int64_t process1 = cpu_ns(CLOCK_PROCESS_CPUTIME_ID), server1 = server_timed ? cpu_ns(server_clock) : 0;
   (*camera)->stop();
   const std::string transport = (*camera)->transport_summary();
   camera->reset();
@@ -149,11 +171,30 @@ void BM_LiveGvspLatency(benchmark::State& state) {
   state.counters["poses_per_frame"] = latency.empty() ? 0.0 : static_cast<double>(poses) / static_cast<double>(latency.size());
   state.counters["bad_buffers"] = static_cast<double>(bad);
   state.counters["resent"] = static_cast<double>(sent.packets_resent);
+  const double frames = double(std::max<int64_t>(state.iterations(), 1));
+  const double host_cpu_ms = double((process1 - process0) - (server1 - server0)) / 1e6 / frames;
+  state.counters["host_cpu_ms"] = server_timed ? host_cpu_ms : 0.0;
+  state.counters["headroom"] = server_timed && host_cpu_ms > 0 ? 1000.0 / rate_hz / host_cpu_ms : 0.0;
   state.SetLabel(transport);
 }
 
-// 200 frames of the 240 rendered (2 s at 100 Hz), so that no image is served twice.
+void BM_LiveGvspLatency(benchmark::State& state) {
+  run_live(state, bench::four_targets_sequence(), 100, state.range(0));
+}
+
+void BM_LiveGvspHeadroom(benchmark::State& state) {
+  if (state.range(0) == 1280) {
+    run_live(state, bench::scale_sequence(16), 60, 0);
+  } else {
+    run_live(state, bench::four_targets_sequence(), 100, 0);
+  }
+}
+
+// 200 frames of the 240 rendered (2 s at 100 Hz), so that no image is served twice;
+// 110 of the scale scene's 120.
 BENCHMARK(BM_LiveGvspLatency)->Arg(0)->Arg(10)->Iterations(200)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LiveGvspHeadroom)->Arg(752)->Iterations(200)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LiveGvspHeadroom)->Arg(1280)->Iterations(110)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
