@@ -40,12 +40,18 @@ bool any_byte_at_least(uint64_t word, int level) {
 // x itself, or the start of the first 64 that hold one, or where fewer than 64 are
 // left. A byte reaches the level when its saturating difference from level - 1 is
 // not zero (SSE2 on x86-64, NEON on aarch64; elsewhere x).
+#if defined(__SSE2__)
+// Each of the 16 bytes from `at` less `below` (level - 1 in every byte), saturated:
+// not zero exactly where the byte reaches the level.
+__m128i excess(const uint8_t* row, int at, __m128i below) {
+  return _mm_subs_epu8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(row + at)), below);
+}
+#endif
+
 int skip_64(const uint8_t* row, int x, int end, int level) {
 #if defined(__SSE2__)
   const __m128i below = _mm_set1_epi8(static_cast<char>(level - 1));
-  const auto above = [&](int at) {
-    return _mm_subs_epu8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(row + at)), below);
-  };
+  const auto above = [&](int at) { return excess(row, at, below); };
   for (; x + 64 <= end; x += 64) {
     const __m128i any = _mm_or_si128(_mm_or_si128(above(x), above(x + 16)), _mm_or_si128(above(x + 32), above(x + 48)));
     if (_mm_movemask_epi8(_mm_cmpeq_epi8(any, _mm_setzero_si128())) != 0xFFFF) break;
@@ -76,8 +82,7 @@ int skip_below(const uint8_t* row, int x, int end, int level) {
 // Bit i set when row[at + i] >= level, for the 16 pixels from `at` (below: level - 1
 // in every byte).
 uint32_t seed_bits(const uint8_t* row, int at, __m128i below) {
-  const __m128i excess = _mm_subs_epu8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(row + at)), below);
-  return ~uint32_t(_mm_movemask_epi8(_mm_cmpeq_epi8(excess, _mm_setzero_si128()))) & 0xFFFFu;
+  return ~uint32_t(_mm_movemask_epi8(_mm_cmpeq_epi8(excess(row, at, below), _mm_setzero_si128()))) & 0xFFFFu;
 }
 #endif
 
