@@ -84,14 +84,45 @@ int skip_below(const uint8_t* row, int x, int end, int level) {
 uint32_t seed_bits(const uint8_t* row, int at, __m128i below) {
   return ~uint32_t(_mm_movemask_epi8(_mm_cmpeq_epi8(excess(row, at, below), _mm_setzero_si128()))) & 0xFFFFu;
 }
+
+// Bit i set when row[x + i] >= level, for the `n` (16..63) pixels from x; the
+// last 16 overlap the previous ones, so nothing past x + n is read.
+uint64_t row_bits(const uint8_t* row, int x, int n, __m128i below) {
+  uint64_t bits = 0;
+  for (int at = 0; at < n; at += 16) {
+    const int from = std::min(at, n - 16);
+    bits |= uint64_t(seed_bits(row, x + from, below)) << from;
+  }
+  return bits;
+}
 #endif
 
-double cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+// Bit i set when labels[i] == label, for the n (1..64) labels from `labels`.
+uint64_t label_bits(const int32_t* labels, int n, int32_t label) {
+  uint64_t bits = 0;
+#if defined(__SSE2__)
+  if (n >= 4) {  // four at a time, the last four overlapping the previous ones
+    const __m128i want = _mm_set1_epi32(label);
+    for (int at = 0; at < n; at += 4) {
+      const int from = std::min(at, n - 4);
+      const __m128i same = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(labels + from)), want);
+      bits |= uint64_t(_mm_movemask_ps(_mm_castsi128_ps(same))) << from;
+    }
+    return bits;
+  }
+#endif
+  for (int i = 0; i < n; ++i) bits |= uint64_t(labels[i] == label) << i;
+  return bits;
 }
 
-// Area of the convex hull of `p`, sorted lexicographically (Andrew's monotone chain).
-double convex_hull_area(const std::vector<Eigen::Vector2d>& p, std::vector<Eigen::Vector2d>* hull) {
+// The turn o -> a -> b in the (y, x) plane: positive counter-clockwise.
+int64_t cross(const HullPoint& o, const HullPoint& a, const HullPoint& b) {
+  return (a.y - o.y) * (b.x - o.x) - (a.x - o.x) * (b.y - o.y);
+}
+
+// Area of the convex hull of `p` (twice the pixel-corner coordinates, so whole
+// numbers: exact), sorted lexicographically (Andrew's monotone chain).
+double convex_hull_area(const std::vector<HullPoint>& p, std::vector<HullPoint>* hull) {
   if (p.size() < 3) return 0.0;
   hull->resize(2 * p.size());
   auto& h = *hull;
@@ -104,9 +135,9 @@ double convex_hull_area(const std::vector<Eigen::Vector2d>& p, std::vector<Eigen
     while (k >= lower && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
     h[k++] = p[i];
   }
-  double twice = 0;
-  for (size_t i = 0; i + 1 < k; ++i) twice += h[i].x() * h[i + 1].y() - h[i + 1].x() * h[i].y();
-  return 0.5 * std::abs(twice);
+  int64_t twice = 0;  // twice the area, in doubled coordinates: 8 times the area
+  for (size_t i = 0; i + 1 < k; ++i) twice += h[i].y * h[i + 1].x - h[i + 1].y * h[i].x;
+  return double(twice < 0 ? -twice : twice) / 8.0;
 }
 
 }  // namespace
@@ -222,6 +253,14 @@ void RegionGrower::grow_typed(const cv::Mat& work, cv::Rect window, int seed_min
   const int width = size_.width;
   const int x0 = window.x, x1 = window.x + window.width;
   const int y0 = window.y, y1 = window.y + window.height;
+#if defined(__SSE2__)
+  if constexpr (sizeof(T) == 1) {
+    if (!masked && seed_min >= 1 && keep_min >= 1 && window.width >= 16 && window.width <= kMaxBitsWidth) {
+      grow_narrow(work, window, seed_min, keep_min, regions);
+      return;
+    }
+  }
+#endif
   for (int y = y0; y < y1; ++y) {
     const T* row = work.ptr<T>(y);
     const int32_t* labels = labels_.data() + size_t(y) * width;
@@ -275,6 +314,86 @@ void RegionGrower::grow_typed(const cv::Mat& work, cv::Rect window, int seed_min
     }
   }
 }
+
+#if defined(__SSE2__)
+void RegionGrower::grow_narrow(const cv::Mat& work, cv::Rect window, int seed_min, int keep_min,
+                               std::vector<Region>* regions) {
+  const int width = size_.width, rows = window.height;
+  // Seeds first: a window without one (its marker off this frame) costs no more.
+  const __m128i seed_below = _mm_set1_epi8(static_cast<char>(seed_min - 1));
+  seed_rows_.resize(size_t(rows));
+  uint64_t any = 0;
+  for (int r = 0; r < rows; ++r) {
+    seed_rows_[size_t(r)] = row_bits(work.ptr<uint8_t>(window.y + r), window.x, window.width, seed_below);
+    any |= seed_rows_[size_t(r)];
+  }
+  if (any == 0) return;
+  // Open pixels: above f2 and not labelled yet (by this window's earlier pass or
+  // an overlapping window).
+  const __m128i keep_below = _mm_set1_epi8(static_cast<char>(keep_min - 1));
+  open_rows_.resize(size_t(rows));
+  for (int r = 0; r < rows; ++r) {
+    const int y = window.y + r;
+    const int32_t* labels = labels_.data() + size_t(y) * width + window.x;
+    uint64_t bits = row_bits(work.ptr<uint8_t>(y), window.x, window.width, keep_below);
+    for (uint64_t b = bits; b != 0; b &= b - 1)
+      if (labels[__builtin_ctzll(b)] != 0) bits &= ~(b & -b);
+    open_rows_[size_t(r)] = bits;
+  }
+  for (int r = 0; r < rows; ++r)
+    for (uint64_t b = seed_rows_[size_t(r)]; b != 0; b &= b - 1) {
+      const int i = __builtin_ctzll(b);
+      if (open_rows_[size_t(r)] >> i & 1) grow_bits(window, i, r, regions);
+    }
+}
+
+void RegionGrower::grow_bits(cv::Rect window, int c, int r, std::vector<Region>* regions) {
+  // Queue entries are c | r << 16: a neighbour is an entry plus kStep[k].
+  static constexpr int kNearDx[9] = {-1, 0, 1, -1, 0, 1, -1, 0, 1}, kNearDy[9] = {-1, -1, -1, 0, 0, 0, 1, 1, 1};
+  static constexpr uint32_t kStep[9] = {
+      uint32_t(-65537), uint32_t(-65536), uint32_t(-65535), uint32_t(-1), 0, 1, 65535, 65536, 65537};
+  if (bits_queue_.size() < size_t(window.area())) bits_queue_.resize(size_t(window.area()));
+  uint32_t* const queue = bits_queue_.data();
+  uint64_t* const open = open_rows_.data();
+  const int last_row = window.height - 1;
+  size_t tail = 0;
+  queue[tail++] = uint32_t(c) | uint32_t(r) << 16;
+  open[r] &= ~(uint64_t(1) << c);
+  // Breadth-first, neighbours row by row as in grow_from: the open neighbours as 9
+  // bits (bit 3 (dy + 1) + dx + 1), taken in that order.
+  for (size_t head = 0; head < tail; ++head) {
+    const uint32_t at = queue[head];
+    const int pc = int(at & 0xFFFF), pr = int(at >> 16);
+    uint32_t near = uint32_t((open[pr] << 1 >> pc) & 7) << 3;
+    if (pr > 0) near |= uint32_t((open[pr - 1] << 1 >> pc) & 7);
+    if (pr < last_row) near |= uint32_t((open[pr + 1] << 1 >> pc) & 7) << 6;
+    for (; near != 0; near &= near - 1) {
+      const int k = __builtin_ctz(near);
+      open[pr + kNearDy[k]] &= ~(uint64_t(1) << (pc + kNearDx[k]));
+      queue[tail++] = at + kStep[k];
+    }
+  }
+  // Labels, the pixel list (in the order reached) and the bounding box.
+  Region region;
+  region.label = next_label_++;
+  region.begin = static_cast<int>(pixels_.size());
+  const int width = size_.width;
+  int min_c = c, max_c = c, min_r = r, max_r = r;
+  for (size_t k = 0; k < tail; ++k) {
+    const int qc = int(queue[k] & 0xFFFF), qr = int(queue[k] >> 16);
+    const int32_t index = (window.y + qr) * width + window.x + qc;
+    labels_[size_t(index)] = region.label;
+    pixels_.push_back(index);
+    min_c = std::min(min_c, qc);
+    max_c = std::max(max_c, qc);
+    min_r = std::min(min_r, qr);
+    max_r = std::max(max_r, qr);
+  }
+  region.box = cv::Rect(window.x + min_c, window.y + min_r, max_c - min_c + 1, max_r - min_r + 1);
+  region.end = static_cast<int>(pixels_.size());
+  regions->push_back(region);
+}
+#endif
 
 template <typename T>
 void RegionGrower::grow_from(const cv::Mat& work, cv::Rect window, int seed, int keep_min,
@@ -382,18 +501,33 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
   int64_t sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
   int top = -1;  // the region's brightest value and how many pixels hold it
   int top_n = 0;
-  for (int y = std::max(min_y - 1, wy0); y <= std::min(max_y + 1, wy1); ++y) {
+  const int ya = std::max(min_y - 1, wy0), yb = std::min(max_y + 1, wy1);
+  // Box and ring no wider than 64 (any region of an ROI window): each row's members
+  // as bits, so that only members and pixels next to one are visited, in the same
+  // order and with the same sums as the plain sweep below.
+  const int cols = x1 - x0 + 1;
+  const bool as_bits = cols <= 64;
+  if (as_bits) {
+    member_rows_.assign(size_t(yb - ya + 3), 0);  // rows ya - 1 .. yb + 1, the outer two empty
+    for (int y = std::max(ya, min_y); y <= std::min(yb, max_y); ++y) {
+      const int32_t* here = labels_.data() + size_t(y) * width + x0;
+      member_rows_[size_t(y - ya + 1)] = label_bits(here, cols, label);
+    }
+  }
+  const auto spread = [](uint64_t m) { return m | m << 1 | m >> 1; };
+  const uint64_t in_cols = cols == 64 ? ~uint64_t(0) : (uint64_t(1) << cols) - 1;
+  for (int y = ya; y <= yb; ++y) {
     const T* row = work.ptr<T>(y);
     const int32_t* here = labels_.data() + size_t(y) * width;
     const int32_t* up = y > wy0 ? here - width : nullptr;
     const int32_t* down = y < wy1 ? here + width : nullptr;
     int64_t row_n = 0, row_sx = 0, row_sxx = 0;
     int row_min = std::numeric_limits<int>::max(), row_max = -1;
-    for (int x = x0; x <= x1; ++x) {
-      const int32_t l = here[x];
+    // One pixel: a member's moments and weight, or a touching unlabelled pixel's weight.
+    const auto visit = [&](int x, bool member, bool touches) __attribute__((always_inline)) {
       const int value = row[x];
       const double d = double(value) - bg;
-      if (l == label) {
+      if (member) {
         ++row_n;
         row_sx += x;
         row_sxx += int64_t(x) * x;
@@ -405,17 +539,34 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
         top = std::max(top, value);
         row_min = std::min(row_min, x);
         row_max = x;
-        continue;
+        return;
       }
-      if (l != 0 || d <= 0) continue;
-      const int a = std::max(x - 1, wx0), b = std::min(x + 1, wx1);
-      bool touches = false;
-      for (int nx = a; nx <= b && !touches; ++nx)
-        touches = here[nx] == label || (up && up[nx] == label) || (down && down[nx] == label);
-      if (!touches) continue;
+      if (here[x] != 0 || d <= 0 || !touches) return;
       s.w += d;
       s.wx += d * x;
       s.wy += d * y;
+    };
+    if (as_bits) {
+      const uint64_t* m = member_rows_.data() + (y - ya + 1);
+      const uint64_t members = m[0], near = (spread(m[-1]) | spread(m[0]) | spread(m[1])) & in_cols;
+      for (uint64_t b = members | near; b != 0; b &= b - 1) {
+        const int i = __builtin_ctzll(b);
+        visit(x0 + i, members >> i & 1, true);
+      }
+    } else {
+      for (int x = x0; x <= x1; ++x) {
+        const int32_t l = here[x];
+        if (l == label) {
+          visit(x, true, true);
+          continue;
+        }
+        if (l != 0 || row[x] <= bg) continue;
+        const int a = std::max(x - 1, wx0), b = std::min(x + 1, wx1);
+        bool touches = false;
+        for (int nx = a; nx <= b && !touches; ++nx)
+          touches = here[nx] == label || (up && up[nx] == label) || (down && down[nx] == label);
+        visit(x, false, touches);
+      }
     }
     if (row_n == 0) continue;
     s.area += int(row_n);
@@ -442,14 +593,13 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
   // The hull of the pixel squares needs, at each horizontal pixel edge, only
   // the leftmost and rightmost corner there. Stored as (y, x): sorted already,
   // and a mirror image has the same area.
-  hull_points_.clear();
+  hull_points_.resize(2 * size_t(rows + 1));
   for (int r = 0; r <= rows; ++r) {
     const size_t above = size_t(std::max(r - 1, 0)), below = size_t(std::min(r, rows - 1));
-    const double left = std::min(row_min_[above], row_min_[below]) - 0.5;
-    const double right = std::max(row_max_[above], row_max_[below]) + 0.5;
-    const double y = min_y + r - 0.5;
-    hull_points_.emplace_back(y, left);
-    hull_points_.emplace_back(y, right);
+    // Doubled: the edge y - 0.5, the corners left - 0.5 and right + 0.5.
+    const int64_t y = 2 * int64_t(min_y + r) - 1;
+    hull_points_[2 * size_t(r)] = {y, 2 * int64_t(std::min(row_min_[above], row_min_[below])) - 1};
+    hull_points_[2 * size_t(r) + 1] = {y, 2 * int64_t(std::max(row_max_[above], row_max_[below])) + 1};
   }
   s.hull_area = convex_hull_area(hull_points_, &hull_);
   region->sums = s;

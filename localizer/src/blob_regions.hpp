@@ -62,6 +62,11 @@ struct Region {
 // Sets region->accepted, or region->rejected with reason and reason_value.
 void classify(const BlobExtractorConfig& config, Region* region);
 
+// A corner of a pixel square, both coordinates doubled (whole numbers).
+struct HullPoint {
+  int64_t y, x;
+};
+
 // Labels of one image; a region's pixels are listed as y * width + x.
 class RegionGrower {
  public:
@@ -90,6 +95,12 @@ class RegionGrower {
   template <typename T>
   void grow_typed(const cv::Mat& work, cv::Rect window, int seed_min, int keep_min, bool masked,
                   std::vector<Region>* regions);
+  // 8-bit windows 16..kMaxBitsWidth wide (ROI windows): rows of the window as bits.
+  static constexpr int kMaxBitsWidth = 62;  // a row's bits shifted left once still fit 64
+  void grow_narrow(const cv::Mat& work, cv::Rect window, int seed_min, int keep_min, std::vector<Region>* regions);
+  // Grows the region of the open pixel (window.x + c, window.y + r) from open_rows_:
+  // the pixels grow_from would take, in the same order.
+  void grow_bits(cv::Rect window, int c, int r, std::vector<Region>* regions);
   template <typename T>
   void grow_from(const cv::Mat& work, cv::Rect window, int seed, int keep_min, std::vector<Region>* regions);
   template <typename T>
@@ -100,9 +111,14 @@ class RegionGrower {
   std::vector<int32_t> pixels_;
   std::vector<std::pair<int, int>> queue_;  // (x, y) of a growing region's pixels, in the order reached
   cv::Mat seed_mask_;  // pixels at or above the seed level (large windows)
+  // grow_narrow's window rows (bit i: x = window.x + i): seeds, and pixels above
+  // f2 not labelled yet (cleared as they are taken).
+  std::vector<uint64_t> seed_rows_, open_rows_;
+  std::vector<uint32_t> bits_queue_;  // grow_bits' pixels, c | r << 16 in the window
   int32_t next_label_ = 1;
   std::vector<int> row_min_, row_max_;
-  std::vector<Eigen::Vector2d> hull_points_, hull_;
+  std::vector<uint64_t> member_rows_;  // measure's rows of a region as bits
+  std::vector<HullPoint> hull_points_, hull_;
 };
 
 }  // namespace tetrapulse::blob_internal
