@@ -85,16 +85,6 @@ uint32_t seed_bits(const uint8_t* row, int at, __m128i below) {
   return ~uint32_t(_mm_movemask_epi8(_mm_cmpeq_epi8(excess(row, at, below), _mm_setzero_si128()))) & 0xFFFFu;
 }
 
-// Bit i set when row[x + i] >= level, for the `n` (16..63) pixels from x; the
-// last 16 overlap the previous ones, so nothing past x + n is read.
-uint64_t row_bits(const uint8_t* row, int x, int n, __m128i below) {
-  uint64_t bits = 0;
-  for (int at = 0; at < n; at += 16) {
-    const int from = std::min(at, n - 16);
-    bits |= uint64_t(seed_bits(row, x + from, below)) << from;
-  }
-  return bits;
-}
 #endif
 
 // Bit i set when labels[i] == label, for the n (1..64) labels from `labels`.
@@ -251,26 +241,26 @@ void RegionGrower::grow_typed(const cv::Mat& work, cv::Rect window, int seed_min
 void RegionGrower::grow_narrow(const cv::Mat& work, cv::Rect window, int seed_min, int keep_min,
                                std::vector<Region>* regions) {
   const int width = size_.width, rows = window.height;
-  // Seeds first: a window without one (its marker off this frame) costs no more.
+  // Each row's seeds, and its open pixels: above f2 and not labelled yet (by this
+  // window's earlier pass or an overlapping window).
   const __m128i seed_below = _mm_set1_epi8(static_cast<char>(seed_min - 1));
-  seed_rows_.resize(size_t(rows));
-  uint64_t any = 0;
-  for (int r = 0; r < rows; ++r) {
-    seed_rows_[size_t(r)] = row_bits(work.ptr<uint8_t>(window.y + r), window.x, window.width, seed_below);
-    any |= seed_rows_[size_t(r)];
-  }
-  if (any == 0) return;
-  // Open pixels: above f2 and not labelled yet (by this window's earlier pass or
-  // an overlapping window).
   const __m128i keep_below = _mm_set1_epi8(static_cast<char>(keep_min - 1));
+  seed_rows_.resize(size_t(rows));
   open_rows_.resize(size_t(rows));
   for (int r = 0; r < rows; ++r) {
     const int y = window.y + r;
+    const uint8_t* row = work.ptr<uint8_t>(y) + window.x;
+    uint64_t seeds = 0, open = 0;
+    for (int at = 0; at < window.width; at += 16) {
+      const int from = std::min(at, window.width - 16);  // the last 16 overlap
+      seeds |= uint64_t(seed_bits(row, from, seed_below)) << from;
+      open |= uint64_t(seed_bits(row, from, keep_below)) << from;
+    }
     const int32_t* labels = labels_.data() + size_t(y) * width + window.x;
-    uint64_t bits = row_bits(work.ptr<uint8_t>(y), window.x, window.width, keep_below);
-    for (uint64_t b = bits; b != 0; b &= b - 1)
-      if (labels[__builtin_ctzll(b)] != 0) bits &= ~(b & -b);
-    open_rows_[size_t(r)] = bits;
+    for (uint64_t b = open; b != 0; b &= b - 1)
+      if (labels[__builtin_ctzll(b)] != 0) open &= ~(b & -b);
+    seed_rows_[size_t(r)] = seeds;
+    open_rows_[size_t(r)] = open;
   }
   for (int r = 0; r < rows; ++r)
     for (uint64_t b = seed_rows_[size_t(r)]; b != 0; b &= b - 1) {
@@ -311,11 +301,13 @@ void RegionGrower::grow_bits(cv::Rect window, int c, int r, std::vector<Region>*
   region.begin = static_cast<int>(pixels_.size());
   const int width = size_.width;
   int min_c = c, max_c = c, min_r = r, max_r = r;
+  pixels_.resize(pixels_.size() + tail);
+  int32_t* const pixels = pixels_.data() + region.begin;
   for (size_t k = 0; k < tail; ++k) {
     const int qc = int(queue[k] & 0xFFFF), qr = int(queue[k] >> 16);
     const int32_t index = (window.y + qr) * width + window.x + qc;
     labels_[size_t(index)] = region.label;
-    pixels_.push_back(index);
+    pixels[k] = index;
     min_c = std::min(min_c, qc);
     max_c = std::max(max_c, qc);
     min_r = std::min(min_r, qr);
