@@ -270,29 +270,26 @@ void RegionGrower::grow_narrow(const cv::Mat& work, cv::Rect window, int seed_mi
 }
 
 void RegionGrower::grow_bits(cv::Rect window, int c, int r, std::vector<Region>* regions) {
-  // Queue entries are c | r << 16: a neighbour is an entry plus kStep[k].
-  static constexpr int kNearDx[9] = {-1, 0, 1, -1, 0, 1, -1, 0, 1}, kNearDy[9] = {-1, -1, -1, 0, 0, 0, 1, 1, 1};
-  static constexpr uint32_t kStep[9] = {
-      uint32_t(-65537), uint32_t(-65536), uint32_t(-65535), uint32_t(-1), 0, 1, 65535, 65536, 65537};
   if (bits_queue_.size() < size_t(window.area())) bits_queue_.resize(size_t(window.area()));
-  uint32_t* const queue = bits_queue_.data();
+  uint32_t* const queue = bits_queue_.data();  // entries c | r << 16
   uint64_t* const open = open_rows_.data();
-  const int last_row = window.height - 1;
+  const int rows = window.height;
   size_t tail = 0;
   queue[tail++] = uint32_t(c) | uint32_t(r) << 16;
   open[r] &= ~(uint64_t(1) << c);
-  // Breadth-first, neighbours row by row as in grow_from: the open neighbours as 9
-  // bits (bit 3 (dy + 1) + dx + 1), taken in that order.
+  // Breadth-first, neighbours row by row as in grow_from: each of the three rows'
+  // open neighbours as 3 bits (bit k: column pc - 1 + k), taken in order and
+  // cleared from the row at once (one store a row: the next pixel's loads of the
+  // same rows wait for it).
   for (size_t head = 0; head < tail; ++head) {
     const uint32_t at = queue[head];
     const int pc = int(at & 0xFFFF), pr = int(at >> 16);
-    uint32_t near = uint32_t((open[pr] << 1 >> pc) & 7) << 3;
-    if (pr > 0) near |= uint32_t((open[pr - 1] << 1 >> pc) & 7);
-    if (pr < last_row) near |= uint32_t((open[pr + 1] << 1 >> pc) & 7) << 6;
-    for (; near != 0; near &= near - 1) {
-      const int k = __builtin_ctz(near);
-      open[pr + kNearDy[k]] &= ~(uint64_t(1) << (pc + kNearDx[k]));
-      queue[tail++] = at + kStep[k];
+    for (int ny = std::max(pr - 1, 0); ny <= std::min(pr + 1, rows - 1); ++ny) {
+      uint64_t near = (open[ny] << 1 >> pc) & 7;
+      if (near == 0) continue;
+      open[ny] &= ~(near << pc >> 1);
+      const uint32_t left = (uint32_t(ny) << 16) + uint32_t(pc - 1);  // wraps at pc = 0: k >= 1 there
+      for (; near != 0; near &= near - 1) queue[tail++] = left + uint32_t(__builtin_ctzll(near));
     }
   }
   // Labels, the pixel list (in the order reached) and the bounding box.
