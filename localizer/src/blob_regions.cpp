@@ -436,6 +436,9 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
     }
   }
   const auto spread = [](uint64_t m) { return m | m << 1 | m >> 1; };
+  // The weights' sums in locals (registers), stored once: in `s` every pixel's
+  // addition waited on the previous one's store.
+  double w = 0, wx = 0, wy = 0;
   const uint64_t in_cols = cols == 64 ? ~uint64_t(0) : (uint64_t(1) << cols) - 1;
   for (int y = ya; y <= yb; ++y) {
     const T* row = work.ptr<T>(y);
@@ -452,9 +455,9 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
         ++row_n;
         row_sx += x;
         row_sxx += int64_t(x) * x;
-        s.w += d;
-        s.wx += d * x;
-        s.wy += d * y;
+        w += d;
+        wx += d * x;
+        wy += d * y;
         // The peak and clipping follow from the top value (v - bg rises with v).
         top_n = value > top ? 1 : top_n + (value == top);
         top = std::max(top, value);
@@ -463,9 +466,9 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
         return;
       }
       if (here[x] != 0 || d <= 0 || !touches) return;
-      s.w += d;
-      s.wx += d * x;
-      s.wy += d * y;
+      w += d;
+      wx += d * x;
+      wy += d * y;
     };
     if (as_bits) {
       const uint64_t* m = member_rows_.data() + (y - ya + 1);
@@ -501,6 +504,7 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
       row_max_[size_t(y - min_y)] = row_max;
     }
   }
+  s.w = w, s.wx = wx, s.wy = wy;
   if (top >= 0) {
     s.peak = double(top) - bg;
     s.saturated = top >= levels.saturation || (top_n >= Levels::kFlatTopPixels && top >= levels.flat_top_floor);
