@@ -439,7 +439,7 @@ void RegionGrower::measure_typed(const cv::Mat& work, cv::Rect window, const Lev
   // The weights' sums in locals (registers), stored once: in `s` every pixel's
   // addition waited on the previous one's store.
   double w = 0, wx = 0, wy = 0;
-  const uint64_t in_cols = cols == 64 ? ~uint64_t(0) : (uint64_t(1) << cols) - 1;
+  const uint64_t in_cols = !as_bits ? 0 : cols == 64 ? ~uint64_t(0) : (uint64_t(1) << cols) - 1;
   for (int y = ya; y <= yb; ++y) {
     const T* row = work.ptr<T>(y);
     const int32_t* here = labels_.data() + size_t(y) * width;
