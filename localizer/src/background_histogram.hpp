@@ -48,7 +48,7 @@ class BackgroundHistogram {
   void find_occupied(int from, int to);
 
   std::vector<uint32_t> bins_;
-  std::vector<uint32_t> partial_;  // 4 interleaved 8-bit histograms (fewer store-to-load stalls)
+  std::vector<uint32_t> partial_;  // 4 or 8 interleaved 8-bit histograms (fewer store-to-load stalls)
   std::vector<uint32_t> full_;     // every 16-bit value (large windows)
   mutable std::vector<uint32_t> merged_;  // fit_background's scratch: neighbouring bins merged
   int used_ = 0;                   // bins in use
