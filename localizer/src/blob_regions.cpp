@@ -177,7 +177,8 @@ void RegionGrower::grow_typed(const cv::Mat& work, cv::Rect window, int seed_min
   const int y0 = window.y, y1 = window.y + window.height;
 #if defined(__SSE2__)
   if constexpr (sizeof(T) == 1) {
-    if (!masked && seed_min >= 1 && keep_min >= 1 && window.width >= 16 && window.width <= kMaxBitsWidth) {
+    if (!masked && seed_min >= 1 && keep_min >= 1 && window.width >= 16 && window.width <= kMaxBitsWidth &&
+        window.height <= kMaxBitsHeight) {
       grow_narrow(work, window, seed_min, keep_min, regions);
       return;
     }

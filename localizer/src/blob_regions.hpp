@@ -96,7 +96,8 @@ class RegionGrower {
   void grow_typed(const cv::Mat& work, cv::Rect window, int seed_min, int keep_min, bool masked,
                   std::vector<Region>* regions);
   // 8-bit windows 16..kMaxBitsWidth wide (ROI windows): rows of the window as bits.
-  static constexpr int kMaxBitsWidth = 62;  // a row's bits shifted left once still fit 64
+  static constexpr int kMaxBitsWidth = 62;      // a row's bits shifted left once still fit 64
+  static constexpr int kMaxBitsHeight = 0xFFFF;  // grow_bits packs a row number in 16 bits
   void grow_narrow(const cv::Mat& work, cv::Rect window, int seed_min, int keep_min, std::vector<Region>* regions);
   // Grows the region of the open pixel (window.x + c, window.y + r) from open_rows_:
   // the pixels grow_from would take, in the same order.

@@ -100,6 +100,26 @@ TEST(RegionGrower, NarrowWindowsGrowTheSamePixelsInTheSameOrderAsThePlainPath) {
   EXPECT_GT(narrow, 400);
 }
 
+// A whole-image window of a narrow image taller than 65535 rows (grow_bits packs
+// row numbers in 16 bits) takes the plain path: spots below row 65535 too.
+TEST(RegionGrower, ANarrowWindowOfMoreThan65535RowsGrowsAsThePlainPath) {
+  cv::Mat image(70000, 20, CV_8U, cv::Scalar(10));
+  for (const int y : {100, 65534, 65600, 69990})
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int x = 8; x <= 11; ++x) image.at<uint8_t>(y + dy, x) = uint8_t(200 - 20 * std::abs(dy));
+  cv::Mat wide;
+  image.convertTo(wide, CV_16U);
+  Levels lv;
+  lv.background = 10, lv.f2 = 50, lv.f1 = 150, lv.saturation = 255;
+  const cv::Rect all(0, 0, image.cols, image.rows);
+  const cv::Rect none(0, 0, 0, 0);
+  const Grown bits = grow_two(image, all, none, lv), plain = grow_two(wide, all, none, lv);
+  ASSERT_EQ(bits.regions.size(), 4u);
+  ASSERT_EQ(plain.regions.size(), 4u);
+  for (size_t k = 0; k < 4; ++k) EXPECT_EQ(bits.regions[k].box, plain.regions[k].box);
+  EXPECT_EQ(bits.pixels, plain.pixels);
+}
+
 // The measurement's sums from their definition: the region's pixels, and the
 // unlabelled pixels of the window brighter than the background that touch one,
 // in row order.
