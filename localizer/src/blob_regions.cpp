@@ -81,7 +81,7 @@ int skip_below(const uint8_t* row, int x, int end, int level) {
 #if defined(__SSE2__)
 // Bit i set when row[at + i] >= level, for the 16 pixels from `at` (below: level - 1
 // in every byte).
-uint32_t seed_bits(const uint8_t* row, int at, __m128i below) {
+uint32_t bits_at_least(const uint8_t* row, int at, __m128i below) {
   return ~uint32_t(_mm_movemask_epi8(_mm_cmpeq_epi8(excess(row, at, below), _mm_setzero_si128()))) & 0xFFFFu;
 }
 
@@ -189,16 +189,16 @@ void RegionGrower::grow_typed(const cv::Mat& work, cv::Rect window, int seed_min
     const int32_t* labels = labels_.data() + size_t(y) * width;
     if (!masked) {
 #if defined(__SSE2__)
-      // 8-bit rows at least 16 wide (ROI windows are 20-40): the seeds of 16 pixels
-      // at a time as bits, visited in order (a region grown from one labels others
-      // further on), the last 16 overlapping the previous ones. One chunk of 8 at a
-      // time, then pixel by pixel, was a sixth of tracking's instructions.
+      // 8-bit rows at least 16 wide that grow_narrow does not take (wider than 62:
+      // a whole image): the seeds of 16 pixels at a time as bits, visited in order (a
+      // region grown from one labels others further on), the last 16 overlapping the
+      // previous ones.
       if constexpr (sizeof(T) == 1) {
         if (seed_min >= 1 && x1 - x0 >= 16) {
           const __m128i below = _mm_set1_epi8(static_cast<char>(seed_min - 1));
           for (int x = skip_64(row, x0, x1, seed_min); x < x1; x = skip_64(row, x, x1, seed_min)) {
             const int at = std::min(x, x1 - 16);
-            for (uint32_t bits = seed_bits(row, at, below) >> (x - at); bits != 0; bits &= bits - 1) {
+            for (uint32_t bits = bits_at_least(row, at, below) >> (x - at); bits != 0; bits &= bits - 1) {
               const int sx = x + __builtin_ctz(bits);
               if (labels[sx] == 0) grow_from<T>(work, window, y * width + sx, keep_min, regions);
             }
@@ -254,8 +254,8 @@ void RegionGrower::grow_narrow(const cv::Mat& work, cv::Rect window, int seed_mi
     uint64_t seeds = 0, open = 0;
     for (int at = 0; at < window.width; at += 16) {
       const int from = std::min(at, window.width - 16);  // the last 16 overlap
-      seeds |= uint64_t(seed_bits(row, from, seed_below)) << from;
-      open |= uint64_t(seed_bits(row, from, keep_below)) << from;
+      seeds |= uint64_t(bits_at_least(row, from, seed_below)) << from;
+      open |= uint64_t(bits_at_least(row, from, keep_below)) << from;
     }
     const int32_t* labels = labels_.data() + size_t(y) * width + window.x;
     for (uint64_t b = open; b != 0; b &= b - 1)
