@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "identification_hypothesis.hpp"
+#include "track_neighbours.hpp"
 #include "tetrapulse/localizer/frequency_identifier.hpp"
 #include "tetrapulse/localizer/p3p.hpp"
 #include "tetrapulse/localizer/target_appearance.hpp"
@@ -41,7 +42,10 @@ constexpr uint64_t kNoSharedKey = ~uint64_t(0);
 
 TargetIdentifier::TargetIdentifier(const CameraModel& camera, const TargetsFile& targets,
                                    IdentificationOptions options)
-    : camera_(camera), targets_(targets), options_(options) {
+    : camera_(camera),
+      targets_(targets),
+      options_(options),
+      neighbours_(std::make_unique<localizer_internal::TrackNeighbours>()) {
   coded_ = targets.modulation.kind != ModulationKind::kConstant;
   free_running_ = coded_ && !targets.timebase.synchronized;
   frequency_of_ = frequency_code_of(targets, rig_codes(targets));
@@ -185,10 +189,25 @@ bool TargetIdentifier::may_be(const CandidateTrack& track, size_t i, size_t t, s
   return tc.best_cost[size_t(code)] <= allowed_errors(counted) + options_.code_margin;
 }
 
-double TargetIdentifier::reach_px(double radius_px, size_t t) const { return 2 * extent_ratio_[t] * radius_px + 10; }
+namespace {
+
+double reach_of(double radius_px, double extent_ratio) { return 2 * extent_ratio * radius_px + 10; }
+
+}  // namespace
+
+double TargetIdentifier::reach_px(double radius_px, size_t t) const { return reach_of(radius_px, extent_ratio_[t]); }
 
 bool TargetIdentifier::near(const CandidateTrack& a, const CandidateTrack& b, size_t t) const {
   return (a.pixel - b.pixel).norm() <= reach_px(std::max(a.radius_px, b.radius_px), t);
+}
+
+void TargetIdentifier::find_neighbours(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted) {
+  // The largest reach of the wanted targets; a radius below zero reaches no farther
+  // than zero's (nor does it for any target).
+  double extent_ratio = 0;
+  for (size_t t = 0; t < targets_.targets.size() && t < wanted.size(); ++t)
+    if (wanted[t]) extent_ratio = std::max(extent_ratio, extent_ratio_[t]);
+  neighbours_->find(tracks, [extent_ratio](double radius_px) { return reach_of(std::max(radius_px, 0.0), extent_ratio); });
 }
 
 void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted) {
@@ -214,6 +233,10 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
     for (const auto& c : w.candidates) w.combinations *= double(c.size());
     if (w.combinations > 0) order.push_back(std::move(w));
   }
+  // Tracks near a candidate are found among its neighbours (a superset of the tracks
+  // near() it for any wanted target), in index order as the candidates are: the
+  // hypotheses come in the order a scan of all candidates gives them.
+  std::array<std::vector<char>, 4> is_candidate;
   // The budget goes to the targets with the fewest combinations first: a target
   // whose codes have not narrowed its tracks yet (too many to weigh) waits for
   // more bits without holding up the others. A target left out is no rival of
@@ -239,6 +262,11 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
     };
     // Tracks of one target lie within its image: at most its size over its markers' size, doubled.
     const auto near = [&](int a, int b) { return this->near(tracks[size_t(a)], tracks[size_t(b)], t); };
+    for (size_t m = 0; m < 4; ++m) {
+      is_candidate[m].assign(n, 0);
+      for (int i : w.candidates[m]) is_candidate[m][size_t(i)] = 1;
+    }
+    const auto neighbours = [&](int a) -> const std::vector<int>& { return neighbours_->of(size_t(a)); };
     const size_t before = hypotheses_.size();
     bool over = false;
     Hypothesis h;
@@ -247,34 +275,45 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
       // Markers the codes cannot tell apart: one hypothesis per set of four tracks,
       // whose geometry names the markers (geometry(): all 24 assignments).
       h.unordered = true;
-      const std::vector<int>& c = w.candidates[0];
-      const size_t k = c.size();
-      std::vector<double> costs(k);
-      for (size_t i = 0; i < k; ++i) costs[i] = cost(c[i], 0);
-      for (size_t i0 = 0; i0 < k && !over; ++i0)
-        for (size_t i1 = i0 + 1; i1 < k && !over; ++i1) {
-          if (costs[i0] + costs[i1] > bound || !near(c[i0], c[i1])) continue;
-          for (size_t i2 = i1 + 1; i2 < k && !over; ++i2) {
-            if (costs[i0] + costs[i1] + costs[i2] > bound || !near(c[i0], c[i2]) || !near(c[i1], c[i2])) continue;
-            for (size_t i3 = i2 + 1; i3 < k; ++i3) {
-              if (costs[i0] + costs[i1] + costs[i2] + costs[i3] > bound) continue;
-              if (!near(c[i0], c[i3]) || !near(c[i1], c[i3]) || !near(c[i2], c[i3])) continue;
+      // Sets c0 < c1 < c2 < c3 of candidates (track indices), each near the others.
+      const std::vector<char>& candidate = is_candidate[0];
+      for (const int c0 : w.candidates[0]) {
+        if (over) break;
+        const double cost0 = cost(c0, 0);
+        for (const int c1 : neighbours(c0)) {
+          if (over) break;
+          if (c1 <= c0 || !candidate[size_t(c1)]) continue;
+          const double cost01 = cost0 + cost(c1, 0);
+          if (cost01 > bound || !near(c0, c1)) continue;
+          for (const int c2 : neighbours(c0)) {
+            if (over) break;
+            if (c2 <= c1 || !candidate[size_t(c2)]) continue;
+            const double cost012 = cost01 + cost(c2, 0);
+            if (cost012 > bound || !near(c0, c2) || !near(c1, c2)) continue;
+            for (const int c3 : neighbours(c0)) {
+              if (c3 <= c2 || !candidate[size_t(c3)]) continue;
+              if (cost012 + cost(c3, 0) > bound) continue;
+              if (!near(c0, c3) || !near(c1, c3) || !near(c2, c3)) continue;
               if (hypotheses_.size() >= options_.max_hypotheses) {
                 over = true;
                 break;
               }
-              h.track = {c[i0], c[i1], c[i2], c[i3]};
+              h.track = {c0, c1, c2, c3};
               score_codes(&h);
               hypotheses_.push_back(h);
             }
           }
         }
+      }
     }
-    for (int a : w.candidates[0])
-      for (int b : w.candidates[1]) {
-        if (over || h.unordered || b == a || cost(a, 0) + cost(b, 1) > bound || !near(a, b)) continue;
-        for (int c : w.candidates[2]) {
-          if (over || c == a || c == b || !near(a, c) || !near(b, c)) continue;
+    for (int a : w.candidates[0]) {
+      if (over || h.unordered) break;
+      for (int b : neighbours(a)) {
+        if (over) break;
+        if (!is_candidate[1][size_t(b)] || cost(a, 0) + cost(b, 1) > bound || !near(a, b)) continue;
+        for (int c : neighbours(a)) {
+          if (over) break;
+          if (!is_candidate[2][size_t(c)] || c == b || !near(a, c) || !near(b, c)) continue;
           const double abc = cost(a, 0) + cost(b, 1) + cost(c, 2);
           if (abc > bound) continue;
           // Unmodulated: no codes narrow the fourth track; a P3P root of the first
@@ -283,8 +322,8 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
           std::array<Eigen::Vector2d, 4> fourth;
           const int roots = coded_ ? 0 : predict_fourth(tracks, t, {a, b, c}, &fourth);
           if (!coded_ && roots == 0) continue;
-          for (int d : w.candidates[3]) {
-            if (d == a || d == b || d == c || abc + cost(d, 3) > bound) continue;
+          for (int d : neighbours(a)) {
+            if (!is_candidate[3][size_t(d)] || d == b || d == c || abc + cost(d, 3) > bound) continue;
             if (!near(a, d) || !near(b, d) || !near(c, d)) continue;
             if (!coded_ && !std::any_of(fourth.begin(), fourth.begin() + roots, [&](const Eigen::Vector2d& px) {
                   return (px - tracks[size_t(d)].pixel).norm() <= kFourthMarkerTolerancePx + tracks[size_t(d)].radius_px;
@@ -301,6 +340,7 @@ void TargetIdentifier::enumerate(const std::vector<CandidateTrack>& tracks, cons
           }
         }
       }
+    }
     if (over) {
       hypotheses_.resize(before);
       Unweighed u;
@@ -491,6 +531,7 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
   bearings_.clear();
   if (tracks.size() < 3) return out;
   if (coded_) score_tracks(tracks);
+  find_neighbours(tracks, wanted);
   enumerate(tracks, wanted);
   last_hypotheses_ = hypotheses_.size();
   {

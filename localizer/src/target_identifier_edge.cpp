@@ -14,6 +14,7 @@
 #include <numeric>
 
 #include "identification_hypothesis.hpp"
+#include "track_neighbours.hpp"
 #include "tetrapulse/localizer/p3p.hpp"
 
 namespace tetrapulse {
@@ -86,6 +87,11 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
         if (tracks[i].measured && !track_blocked[i] && by_border(tracks[i]) && may_be(tracks[i], i, t, m))
           candidates[m].push_back(int(i));
     const auto near = [&](int a, int b) { return a != b && this->near(tracks[size_t(a)], tracks[size_t(b)], t); };
+    std::array<std::vector<char>, 4> is_candidate;
+    for (size_t k = 0; k < 4; ++k) {
+      is_candidate[k].assign(tracks.size(), 0);
+      for (int i : candidates[k]) is_candidate[k][size_t(i)] = 1;
+    }
     for (int missing = 0; missing < 4 && !over; ++missing) {
       std::array<size_t, 3> m{};
       for (size_t k = 0, j = 0; k < 4; ++k)
@@ -94,11 +100,13 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
       h.target = t;
       h.missing = missing;
       h.track[size_t(missing)] = -1;
-      for (int a : candidates[m[0]])
-        for (int b : candidates[m[1]]) {
-          if (!near(a, b)) continue;
-          for (int c : candidates[m[2]]) {
-            if (!near(a, c) || !near(b, c)) continue;
+      // Candidates near a are among its neighbours, in the same (index) order.
+      for (int a : candidates[m[0]]) {
+        if (over) break;
+        for (int b : neighbours_->of(size_t(a))) {
+          if (!is_candidate[m[1]][size_t(b)] || !near(a, b)) continue;
+          for (int c : neighbours_->of(size_t(a))) {
+            if (!is_candidate[m[2]][size_t(c)] || !near(a, c) || !near(b, c)) continue;
             if (hs.size() >= options_.max_hypotheses) {
               over = true;
               break;
@@ -111,6 +119,7 @@ void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& track
           }
           if (over) break;
         }
+      }
     }
   }
   // Too many to weigh: the codes have not narrowed the tracks yet; wait.

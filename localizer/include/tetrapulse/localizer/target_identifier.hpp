@@ -79,6 +79,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <unordered_map>
 #include <utility>
@@ -97,6 +98,9 @@
 #include "tetrapulse/localizer/track_bits.hpp"
 
 namespace tetrapulse {
+namespace localizer_internal {
+class TrackNeighbours;
+}  // namespace localizer_internal
 
 struct IdentificationOptions {
   P3PSolver solver = kDefaultP3PSolver;
@@ -174,6 +178,8 @@ class TargetIdentifier {
   double reach_px(double radius_px, size_t t) const;
   // Whether two tracks lie close enough to be markers of target t.
   bool near(const CandidateTrack& a, const CandidateTrack& b, size_t t) const;
+  // Finds neighbours_ for this call: pairs near() for some wanted target.
+  void find_neighbours(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted);
   // The three-track pass (target_identifier_edge.cpp), after the four-track one.
   void identify_at_edge(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted,
                         std::vector<char>& track_blocked, std::vector<char>& target_blocked,
@@ -233,6 +239,9 @@ class TargetIdentifier {
   };
   std::unordered_map<uint64_t, SharedGeometry> shared_geometry_;  // this call's, by shared_key()
   std::vector<std::pair<int8_t, Eigen::Vector3d>> bearings_;     // this call's, by track (state as geometry_state)
+  // This call's tracks near each other for some wanted target (track_neighbours.hpp):
+  // the enumerations visit only these.
+  std::unique_ptr<localizer_internal::TrackNeighbours> neighbours_;
   std::vector<TrackCodes> track_codes_;
   std::vector<Hypothesis> hypotheses_;
   std::vector<Hypothesis> sorted_;  // scratch of the sort by cost
