@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <fmt/format.h>
 
 #include "tetrapulse/localizer/sphere_image.hpp"
@@ -138,7 +138,9 @@ class ReprojectionProblem {
 // A 6 x 6 symmetric positive definite system by Cholesky, A = L L^T, in loops the
 // compiler unrolls: Eigen's LLT of a fixed 6 x 6 runs its generic blocked-column
 // code, and the normal equations are factored twice per Levenberg-Marquardt
-// iteration. ok() is false unless every pivot is positive (and finite).
+// iteration (Eigen's pivoting LDLT, which the covariance took, cost as much again as
+// the factorisations of a whole tracked refinement). ok() is false unless every
+// pivot is positive (and finite).
 class Cholesky6 {
  public:
   explicit Cholesky6(const Matrix6& A) {
@@ -156,6 +158,34 @@ class Cholesky6 {
     ok_ = true;
   }
   bool ok() const { return ok_; }
+  // The smallest pivot (the squared diagonal of L) over the largest: near zero, A is
+  // nearly singular.
+  double pivot_ratio() const {
+    double least = 1 / (inv_diag_[0] * inv_diag_[0]), most = least;
+    for (int j = 1; j < 6; ++j) {
+      const double d = 1 / (inv_diag_[j] * inv_diag_[j]);
+      least = std::min(least, d), most = std::max(most, d);
+    }
+    return least / most;
+  }
+  // A^-1 = L^-T L^-1, symmetric to the last bit (each entry and its mirror are one sum).
+  Matrix6 inverse() const {
+    double M[6][6] = {};  // L^-1, lower triangular, by forward substitution
+    for (int c = 0; c < 6; ++c)
+      for (int i = c; i < 6; ++i) {
+        double s = i == c ? 1.0 : 0.0;
+        for (int k = c; k < i; ++k) s -= L_[i][k] * M[k][c];
+        M[i][c] = s * inv_diag_[i];
+      }
+    Matrix6 out;
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j <= i; ++j) {
+        double s = 0;
+        for (int k = i; k < 6; ++k) s += M[k][i] * M[k][j];
+        out(i, j) = out(j, i) = s;
+      }
+    return out;
+  }
   // A^-1 b (forward, then back substitution).
   Vector6 solve(const Vector6& b) const {
     double y[6];
@@ -293,10 +323,9 @@ tl::expected<RefinedPose, RefinementError> refine_pose(const CameraModel& camera
   const int dof = 2 * int(markers.size()) - 6;
   out.sigma_px = options.sigma_px > 0 ? options.sigma_px : (dof > 0 ? std::sqrt(squared / dof) : 0);
   if (!options.covariance) return out;
-  const Eigen::LDLT<Matrix6> ldlt(W);
-  if (out.sigma_px > 0 && ldlt.info() == Eigen::Success && ldlt.isPositive() &&
-      ldlt.vectorD().minCoeff() > 1e-12 * ldlt.vectorD().maxCoeff()) {
-    out.covariance = out.sigma_px * out.sigma_px * ldlt.solve(Matrix6::Identity());
+  const Cholesky6 llt(W);
+  if (out.sigma_px > 0 && llt.ok() && llt.pivot_ratio() > 1e-12) {
+    out.covariance = out.sigma_px * out.sigma_px * llt.inverse();
     out.has_covariance = out.covariance.allFinite();
   }
   return out;

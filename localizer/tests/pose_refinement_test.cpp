@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <fmt/format.h>
 
 #include "tetrapulse/localizer/sphere_image.hpp"
@@ -103,6 +104,40 @@ TEST_P(PoseRefinement, WithoutTheCovarianceGivesTheSamePoseAndResidual) {
     EXPECT_EQ(a->rms_px, b->rms_px);
     EXPECT_EQ(a->sigma_px, b->sigma_px);
     EXPECT_EQ(a->iterations, b->iterations);
+  }
+}
+
+TEST_P(PoseRefinement, CovarianceIsSigmaSquaredTimesTheInverseNormalMatrix) {
+  // Exact views, sigma given: the covariance is sigma^2 (J^T J)^-1, J the derivative of
+  // the four projections by (w, v), here by central differences.
+  std::mt19937_64 rng(7);
+  const double sigma = 0.3, h = 1e-6;
+  for (int pose_index = 0; pose_index < 20; ++pose_index) {
+    const Pose truth = random_visible_pose(rng, camera_, target_, 0.5, 4.0, 20.0);
+    std::array<Eigen::Vector2d, 4> exact;
+    for (int i = 0; i < 4; ++i) ASSERT_TRUE(camera_.project(truth.apply(target_.markers[i].position_m), &exact[i]));
+    RefinementOptions options;
+    options.sigma_px = sigma;
+    const auto refined = refine_pose(camera_, observations(target_, exact), truth, options);
+    ASSERT_TRUE(refined && refined->has_covariance);
+    const auto projections = [&](const Vector6& d) {
+      const Pose p{so3_exp(d.head<3>()) * refined->pose.R, refined->pose.t + d.tail<3>()};
+      Eigen::Matrix<double, 8, 1> out;
+      for (int i = 0; i < 4; ++i) {
+        Eigen::Vector2d px;
+        EXPECT_TRUE(camera_.project(p.apply(target_.markers[i].position_m), &px));
+        out.segment<2>(2 * i) = px;
+      }
+      return out;
+    };
+    Eigen::Matrix<double, 8, 6> J;
+    for (int k = 0; k < 6; ++k) {
+      const Vector6 d = h * Vector6::Unit(k);
+      J.col(k) = (projections(d) - projections(-d)) / (2 * h);
+    }
+    const Matrix6 expected = sigma * sigma * (J.transpose() * J).inverse();
+    EXPECT_LE((refined->covariance - expected).norm(), 1e-5 * expected.norm()) << "pose " << pose_index;
+    EXPECT_EQ(refined->covariance, refined->covariance.transpose()) << "pose " << pose_index;
   }
 }
 
