@@ -166,15 +166,19 @@ BackgroundFit BackgroundHistogram::fit_background(double saturation) const {
   // for 58, and noise taken for a marker). Neighbouring bins are merged, 2, 4, 8...
   // at a time, until the tallest merged bin holds max(8, 1/32 of the pixels).
   const uint32_t enough = std::max<uint32_t>(8, total_ / 32);
-  const auto mode_of = [](const uint32_t* h, int size) {
-    int mode = 0;
-    for (int b = 1; b < size; ++b)
+  // The first tallest of bins [from, to).
+  const auto mode_of = [](const uint32_t* h, int from, int to) {
+    int mode = from;
+    for (int b = from + 1; b < to; ++b)
       if (h[b] > h[mode]) mode = b;
     return mode;
   };
   const uint32_t* h = bins_.data();
   int coarse = mode_end, merge = 1;
-  int mode = mode_of(h, coarse);
+  // Bins outside [lo_, hi_] are empty: the first tallest lies within (a window's
+  // values span a few dozen of its 256 bins).
+  const int from = std::max(0, std::min(lo_, coarse - 1)), to = std::min(hi_ + 1, coarse);
+  int mode = from < to ? mode_of(h, from, to) : mode_of(h, 0, coarse);
   if (h[mode] < enough) merged_.assign(bins_.begin(), bins_.begin() + mode_end);
   while (h[mode] < enough && merge < mode_end) {
     // Pairs of the previous level, in place.
@@ -184,7 +188,7 @@ BackgroundFit BackgroundHistogram::fit_background(double saturation) const {
     for (int b = 0; b < coarse; ++b)
       merged_[size_t(b)] = merged_[size_t(2 * b)] + (2 * b + 1 < finer ? merged_[size_t(2 * b + 1)] : 0);
     h = merged_.data();
-    mode = mode_of(h, coarse);
+    mode = mode_of(h, 0, coarse);
   }
   // Initial sigma from the full width at half maximum.
   const double half = h[mode] * 0.5;

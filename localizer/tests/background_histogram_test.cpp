@@ -4,12 +4,61 @@
 // the rows it counts agree on every statistic.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <vector>
 
 #include "../src/background_histogram.hpp"
 
 namespace tetrapulse::blob_internal {
 namespace {
+
+// Otsu's threshold by its definition: the split t (values <= t darker) with the
+// largest w0 w1 (mean0 - mean1)^2, the first of equals, in long double; the
+// returned threshold lies between bin t and t + 1.
+double otsu_by_definition(const cv::Mat& image) {
+  std::vector<long double> count(256, 0);
+  for (int y = 0; y < image.rows; ++y)
+    for (int x = 0; x < image.cols; ++x) count[image.at<uint8_t>(y, x)] += 1;
+  long double total = 0, sum_all = 0;
+  for (int v = 0; v < 256; ++v) total += count[v], sum_all += count[v] * v;
+  long double w0 = 0, sum0 = 0, best = -1;
+  int best_t = -1;
+  for (int t = 0; t < 255; ++t) {
+    w0 += count[t], sum0 += count[t] * t;
+    const long double w1 = total - w0;
+    if (w0 <= 0 || count[t] == 0) continue;
+    if (w1 <= 0) break;
+    const long double d = sum0 / w0 - (sum_all - sum0) / w1;
+    const long double between = w0 * w1 * d * d;
+    if (between > best * (1 + 1e-15L)) best = between, best_t = t;
+  }
+  return best_t < 0 ? -1 : best_t + 0.5;
+}
+
+TEST(BackgroundHistogram, OtsuSplitsWhereTheBetweenClassVarianceIsLargest) {
+  std::mt19937 rng(11);
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const int width = std::uniform_int_distribution<int>(4, 60)(rng);
+    const int height = std::uniform_int_distribution<int>(4, 60)(rng);
+    cv::Mat image(height, width, CV_8U);
+    std::normal_distribution<double> background(std::uniform_real_distribution<double>(5, 120)(rng),
+                                                std::uniform_real_distribution<double>(0.5, 12)(rng));
+    std::uniform_int_distribution<int> spot(0, 99), bright(60, 255);
+    const int share = std::uniform_int_distribution<int>(0, 40)(rng);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        image.at<uint8_t>(y, x) =
+            uint8_t(spot(rng) < share ? bright(rng) : std::clamp(int(std::lround(background(rng))), 0, 255));
+    BackgroundHistogram h;
+    h.count(image, cv::Rect(0, 0, width, height));
+    const double expected = otsu_by_definition(image);
+    EXPECT_EQ(h.otsu(), expected) << "trial " << trial << ", " << width << " x " << height;
+    checked += expected >= 0;
+  }
+  EXPECT_GT(checked, 390);
+}
 
 TEST(BackgroundHistogram, ALargeWindowCountsItsEveryOtherRowExactly) {
   std::mt19937 rng(5);
