@@ -540,8 +540,11 @@ std::vector<Identification> TargetIdentifier::identify(const std::vector<Candida
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(),
                      [&](uint32_t a, uint32_t b) { return hypotheses_[a].cost < hypotheses_[b].cost; });
+    // With the capacity of the buffer it takes the place of: holds() appends the
+    // other assignments of sets of tracks, and a buffer sized exactly would be
+    // copied whole to take them.
     sorted_.clear();
-    sorted_.reserve(order.size());
+    sorted_.reserve(std::max(order.size(), hypotheses_.capacity()));
     for (uint32_t i : order) sorted_.push_back(hypotheses_[i]);
     hypotheses_.swap(sorted_);
     sorted_count_ = hypotheses_.size();

@@ -70,7 +70,11 @@ bool TargetIdentifier::edge_geometry(const std::vector<CandidateTrack>& tracks, 
 void TargetIdentifier::identify_at_edge(const std::vector<CandidateTrack>& tracks, const std::vector<bool>& wanted,
                                         std::vector<char>& track_blocked, std::vector<char>& target_blocked,
                                         std::vector<Identification>* out) {
-  std::vector<Hypothesis> hs;
+  // Kept between calls: while targets are sought, thousands of hypotheses a frame,
+  // and a vector grown anew each call spent more time faulting in fresh pages and
+  // copying than the pass itself.
+  std::vector<Hypothesis>& hs = edge_hypotheses_;
+  hs.clear();
   bool over = false;
   for (size_t t = 0; t < targets_.targets.size() && !over; ++t) {
     // Targets that waited on rivals in the four-track pass stay rivals here.

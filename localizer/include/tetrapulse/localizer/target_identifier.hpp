@@ -247,6 +247,7 @@ class TargetIdentifier {
   std::vector<Hypothesis> sorted_;  // scratch of the sort by cost
   size_t sorted_count_ = 0;          // hypotheses_ sorted by cost; the rest added by holds()
   std::vector<Hypothesis> assignments_;  // see geometry()
+  std::vector<Hypothesis> edge_hypotheses_;  // identify_at_edge's, kept for their capacity
   std::vector<bool> interchangeable_;    // per target: all four markers play one code
   // Targets with too many combinations to weigh in this call: each marker's
   // candidate tracks with their code cost, and the least cost per marker.
