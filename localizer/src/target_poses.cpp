@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "disc_occlusion.hpp"
 #include "marker_reassociation.hpp"
 #include "roi_planner.hpp"
 #include "tetrapulse/localizer/code_clock.hpp"
@@ -35,6 +36,68 @@ MarkerLight expected_light(const PoseFrame& f, const TrackedTarget& tt, const Ma
   if (bit == ExpectedBit::kOne) return MarkerLight::kLit;
   if (bit == ExpectedBit::kZero && f.targets.modulation.kind == ModulationKind::kOnOff) return MarkerLight::kDark;
   return MarkerLight::kUnknown;
+}
+
+// A marker's light when seen whole: its track's brightest unmerged, unclipped blob
+// (grey levels x pixels); 0 when it has none.
+double bright_level(const BlobTrack& track) {
+  double best = 0;
+  for (size_t k = 0; k < track.history().size(); ++k) {
+    const TrackSample& s = track.history()[k];
+    if (s.detected && s.measured && !s.merged && !s.saturated) best = std::max(best, s.intensity);
+  }
+  return best;
+}
+
+// A blob in which two markers' light merged: the partner's share of the light,
+// and how far the centroid of what is in view of the farther ball lies from its
+// whole image's (pixels, added to the observed blob's centroid as a correction).
+struct MergedLight {
+  double partner_share = 0;
+  Eigen::Vector2d far_shift = Eigen::Vector2d::Zero();  // (shift of the far ball's light) x (its share)
+};
+
+// Each marker's light seen whole (bright_level) times its code's emission in this
+// exposure; of the farther ball only what the nearer one leaves in view at the
+// predicted pose (the discs of their images), whose centroid moves away from the
+// nearer. The split of the blob between the two predictions gives a share that
+// swings from 0.02 to 0.98 between frames as two touching balls overlap (its parts
+// follow the predictions, not the light), and a pose of two markers and such a pair
+// misses by degrees. Nothing when a level, an emission or the prediction is not known.
+std::optional<MergedLight> merged_light(const PoseFrame& f, size_t t, const std::array<int, 4>& frequency_of,
+                                        const TrackedTarget& tt, int marker, int partner) {
+  if (!tt.predicted) return std::nullopt;
+  const Target& target = f.targets.targets[t];
+  double light[2], radius[2], distance[2];
+  Eigen::Vector2d px[2];
+  const int markers[2] = {marker, partner};
+  for (int k = 0; k < 2; ++k) {
+    const int m = markers[k];
+    if (frequency_of[size_t(m)] >= 0) return std::nullopt;
+    const BlobTrack* track = f.tracker.find(tt.track_of[size_t(m)]);
+    const double level = track ? bright_level(*track) : 0;
+    if (!(level > 0)) return std::nullopt;
+    const Marker& spec = target.markers[size_t(m)];
+    light[k] = level * mean_emission(tt.clock.fitted(), f.targets.modulation, spec.code, f.stamp.timestamp_ns,
+                                     f.stamp.exposure_ns);
+    const Eigen::Vector3d p = tt.predicted->apply(spec.position_m);
+    if (!f.camera.project(p, &px[k])) return std::nullopt;
+    distance[k] = p.norm();
+    radius[k] = f.camera.info().fx * target.marker_diameter_m / 2 / distance[k];
+  }
+  const int far = distance[0] > distance[1] ? 0 : 1, near = 1 - far;
+  const double d = (px[far] - px[near]).norm();
+  HiddenPart hidden;  // none for markers of unknown size
+  if (radius[far] > 0) {
+    hidden = hidden_part(radius[near], radius[far], d);
+    light[far] *= 1 - hidden.area / (M_PI * radius[far] * radius[far]);
+  }
+  if (!(light[0] + light[1] > 0) || !std::isfinite(light[0] + light[1])) return std::nullopt;
+  MergedLight out;
+  out.partner_share = light[1] / (light[0] + light[1]);
+  if (d > 0) out.far_shift = (light[far] / (light[0] + light[1]) * hidden.shift / d) * (px[far] - px[near]);
+  if (!out.far_shift.allFinite()) return std::nullopt;
+  return out;
 }
 
 FrameMarkers markers_of(const PoseFrame& f, size_t t, const std::array<int, 4>& frequency_of,
@@ -85,6 +148,12 @@ FrameMarkers markers_of(const PoseFrame& f, size_t t, const std::array<int, 4>& 
       pair.partner = out.merged[j].first;
       pair.partner_share = b.intensity / (a.intensity + b.intensity);
       pair.pixel = (a.intensity * a.centroid + b.intensity * b.centroid) / (a.intensity + b.intensity);
+      if (const auto light = merged_light(f, t, frequency_of, tt, pair.marker, pair.partner)) {
+        // The model's centroids are the balls' whole images: the observation, less
+        // the far ball's shift, is what they would give.
+        pair.partner_share = light->partner_share;
+        pair.pixel -= light->far_shift;
+      }
       out.evidence.merged.push_back(pair);
     }
   // The others may join a pose of four they fit, as an unconfirmed marker would.

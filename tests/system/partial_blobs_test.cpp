@@ -54,6 +54,71 @@ TargetEvaluation run(const char* name, const std::vector<int>& ids, uint64_t see
   return all;
 }
 
+// One of the paper's large targets near the right edge of a 752 x 480 view, 1.6 m
+// below the camera, turned so that two of its balls line up along the view ray as it
+// circles: from frame 44 their images touch and are one blob, from frame 75 one ball
+// hides the other. Seen as one blob, the pair is one observation of its light's
+// centroid, (1 - s) h(marker) + s h(partner); with the two other markers that makes
+// six equations for six unknowns, so an error in s goes straight into the pose.
+// (The localizer's scale benchmark with eight targets lost this one in 41 of 120
+// frames, and searched the whole image in 43.)
+const char* kMergingPair = R"(name: merging-pair
+frames: {start_ns: 4000000, period_ns: 10000000, exposure_ns: 2000000, count: 100000}
+camera:
+  image_width: 752
+  image_height: 480
+  hfov_deg: 90
+  distortion_model: plumb_bob
+  distortion_coefficients: [-0.05, 0.01, 0.0, 0.0, 0.0]
+  psf_sigma_px: 0.6
+  motion: {kind: static, position_m: [0.0, 0.0, 1.6], rpy_deg: [180, 0, 0]}
+timebase: {synchronized: true, epoch_ns: 0, bit_period_ns: 10000000}
+modulation: {kind: two_level, low: 0.3}
+targets:
+  - id: 8
+    marker_diameter_m: 0.03
+    radiance_e_per_ms: 1600
+    markers:
+      - position_m: [0.0, -0.1651, 0.2366]
+        code: "011001100110"
+      - position_m: [0.0, 0.1304, 0.1845]
+        code: "010110100111"
+      - position_m: [0.0626, -0.0221, 0.0539]
+        code: "101010010110"
+      - position_m: [-0.0802, 0.0249, 0.0621]
+        code: "100110111001"
+    motion: {kind: circle, center_m: [1.05, 0.35, 0.0], radius_m: 0.05, period_s: 6, rpy_deg: [0, 0, 270]}
+)";
+
+TEST(PartialBlobs, TwoBallsMergingIntoOneBlobShareItsLightAsTheirCodesAndOverlapSay) {
+  // The pair's share s came from how the blob was split between the two predicted
+  // markers, which swung from 0.02 to 0.98 between frames: poses missed the
+  // prediction by 1-20 degrees and half of them were refused; on seeds 7 and 9 the
+  // target was lost and identified wrongly three or four times (coverage 0.50-0.53,
+  // up to 262 mm / 31 degrees off). s now comes from each ball's light before the
+  // merge, its code's emission in this exposure and what the nearer ball hides of
+  // the farther at the predicted pose (the share of its light, and where the part in
+  // view is centred): on seeds 5, 7 and 9, 118 of 118 frames, at worst 2.1 mm / 0.35
+  // degrees. (The virtual rig adds the balls' light where they overlap, real balls
+  // hide each other: leaving the hiding out fits this rig better, 0.28 degrees at
+  // worst, and would be wrong wherever a nearer ball hides a farther.)
+  auto scenario = sim::parse_scenario(kMergingPair, "merging-pair");
+  ASSERT_TRUE(scenario) << scenario.error().what();
+  for (const uint64_t seed : {5, 7, 9}) {
+    const ScenarioRun r = run_scenario_or_fail(*scenario, seed, 120);
+    const TargetEvaluation& all = r.evaluation.overall;
+    std::printf("merging-pair, seed %llu, 120 frames: %zu poses; mean error %.2f mm / %.3f deg; largest %.1f mm / "
+                "%.2f deg; coverage %.4f (%zu of %zu); misidentified %zu\n",
+                (unsigned long long)seed, all.rows, 1e3 * all.position_m.mean, all.orientation_rad.mean * 180 / M_PI,
+                1e3 * all.position_m.max, all.orientation_rad.max * 180 / M_PI, all.coverage(), all.covered_frames,
+                all.visible_frames, all.misidentified);
+    EXPECT_EQ(all.misidentified, 0u) << "seed " << seed;
+    EXPECT_GE(all.coverage(), 0.97) << "seed " << seed;
+    EXPECT_LT(all.position_m.max, 0.004) << "seed " << seed;
+    EXPECT_LT(all.orientation_rad.max, 1.0 * M_PI / 180) << "seed " << seed;
+  }
+}
+
 TEST(PartialBlobs, AMarkerLeavingOverTheBorderIsNoMeasurementOfItsCentre) {
   // crowd, seed 41: drone 1's top marker rises past the image's top edge at frame
   // 27; what is left of its blob is a sliver on row 0, then a 2 x 5 px fragment
