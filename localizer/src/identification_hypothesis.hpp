@@ -1,5 +1,6 @@
 #pragma once
-// Internal to TargetIdentifier (target_identifier.cpp, target_identifier_edge.cpp):
+// Internal to TargetIdentifier (target_identifier.cpp, target_identifier_edge.cpp,
+// target_identifier_enumeration.cpp):
 // a hypothesis and the code evidence of each candidate track.
 #include <array>
 #include <limits>
