@@ -49,9 +49,9 @@ double bright_level(const BlobTrack& track) {
   return best;
 }
 
-// A blob in which two markers' light merged: the partner's share of the light,
-// and how far the centroid of what is in view of the farther ball lies from its
-// whole image's (pixels, added to the observed blob's centroid as a correction).
+// A blob in which two markers' light merged: the partner's share of the light, and
+// how far the farther ball's part in view moves the blob's centroid from where the
+// two whole images would put it (pixels: subtracted from the observed centroid).
 struct MergedLight {
   double partner_share = 0;
   Eigen::Vector2d far_shift = Eigen::Vector2d::Zero();  // (shift of the far ball's light) x (its share)
