@@ -56,8 +56,8 @@ TargetEvaluation run(const char* name, const std::vector<int>& ids, uint64_t see
 
 // One of the paper's large targets near the right edge of a 752 x 480 view, 1.6 m
 // below the camera, turned so that two of its balls line up along the view ray as it
-// circles: from frame 44 their images touch and are one blob, from frame 75 one ball
-// hides the other. Seen as one blob, the pair is one observation of its light's
+// circles: from frame 44 their images touch and are one blob, from frame 75 one lies
+// over the other. Seen as one blob, the pair is one observation of its light's
 // centroid, (1 - s) h(marker) + s h(partner); with the two other markers that makes
 // six equations for six unknowns, so an error in s goes straight into the pose.
 // (The localizer's scale benchmark with eight targets lost this one in 41 of 120
