@@ -65,10 +65,10 @@ struct MergedLight {
 // follow the predictions, not the light), and a pose of two markers and such a pair
 // misses by degrees. Nothing when a level, an emission or the prediction is not known.
 std::optional<MergedLight> merged_light(const PoseFrame& f, size_t t, const std::array<int, 4>& frequency_of,
-                                        const TrackedTarget& tt, int marker, int partner) {
-  if (!tt.predicted) return std::nullopt;
+                                        const TargetRoster& roster, int marker, int partner) {
+  const TrackedTarget& tt = roster[t];
   const Target& target = f.targets.targets[t];
-  double light[2], radius[2], distance[2];
+  double light[2], radius[2];
   Eigen::Vector2d px[2];
   const int markers[2] = {marker, partner};
   for (int k = 0; k < 2; ++k) {
@@ -80,12 +80,9 @@ std::optional<MergedLight> merged_light(const PoseFrame& f, size_t t, const std:
     const Marker& spec = target.markers[size_t(m)];
     light[k] = level * mean_emission(tt.clock.fitted(), f.targets.modulation, spec.code, f.stamp.timestamp_ns,
                                      f.stamp.exposure_ns);
-    const Eigen::Vector3d p = tt.predicted->apply(spec.position_m);
-    if (!f.camera.project(p, &px[k])) return std::nullopt;
-    distance[k] = p.norm();
-    radius[k] = f.camera.info().fx * target.marker_diameter_m / 2 / distance[k];
+    if (!roster.project_marker(t, m, &px[k], &radius[k])) return std::nullopt;  // no prediction, or behind
   }
-  const int far = distance[0] > distance[1] ? 0 : 1, near = 1 - far;
+  const int far = radius[0] < radius[1] ? 0 : 1, near = 1 - far;  // the smaller image is farther
   const double d = (px[far] - px[near]).norm();
   HiddenPart hidden;  // none for markers of unknown size
   if (radius[far] > 0) {
@@ -101,7 +98,8 @@ std::optional<MergedLight> merged_light(const PoseFrame& f, size_t t, const std:
 }
 
 FrameMarkers markers_of(const PoseFrame& f, size_t t, const std::array<int, 4>& frequency_of,
-                        const TrackedTarget& tt) {
+                        const TargetRoster& roster) {
+  const TrackedTarget& tt = roster[t];
   FrameMarkers out;
   std::array<int64_t, 4> seen_track{-1, -1, -1, -1};
   for (int m = 0; m < 4; ++m) {
@@ -148,7 +146,7 @@ FrameMarkers markers_of(const PoseFrame& f, size_t t, const std::array<int, 4>& 
       pair.partner = out.merged[j].first;
       pair.partner_share = b.intensity / (a.intensity + b.intensity);
       pair.pixel = (a.intensity * a.centroid + b.intensity * b.centroid) / (a.intensity + b.intensity);
-      if (const auto light = merged_light(f, t, frequency_of, tt, pair.marker, pair.partner)) {
+      if (const auto light = merged_light(f, t, frequency_of, roster, pair.marker, pair.partner)) {
         // The model's centroids are the balls' whole images: the observation, less
         // the far ball's shift, is what they would give.
         pair.partner_share = light->partner_share;
@@ -243,7 +241,7 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
   TrackedTarget& tt = (*roster)[t];
   const Target& target = f.targets.targets[t];
   const int64_t mid = f.stamp.middle_ns();
-  FrameMarkers markers = markers_of(f, t, frequency_of, tt);
+  FrameMarkers markers = markers_of(f, t, frequency_of, *roster);
   MarkerPoseOptions pose_options = options.pose;
   pose_options.sphere_centroid = options.pose.sphere_centroid && centroids->sphere();
   pose_options.max_rms_px = std::clamp(4 * tt.typical_rms_px, kMinRmsGatePx, options.pose.max_rms_px);
@@ -292,7 +290,7 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
         tt.confirmed[size_t(m)] = true;
       }
       solved = found->pose;
-      markers = markers_of(f, t, frequency_of, tt);
+      markers = markers_of(f, t, frequency_of, *roster);
     }
   }
   if (!solved) {
