@@ -68,59 +68,78 @@ CameraModel::CameraModel(const CameraInfo& info)
   }
 }
 
-// Distortion in normalized coordinates, for plumb_bob: (x, y) -> (x', y') and its Jacobian.
-bool CameraModel::distort(const Eigen::Vector2d& xy, Eigen::Vector2d* out, Eigen::Matrix2d* J) const {
-  const auto& d = info_.distortion;
-  const double x = xy.x(), y = xy.y();
-  const double k1 = d[0], k2 = d[1], p1 = d[2], p2 = d[3], k3 = d[4];
-  const double r2 = x * x + y * y;
-  const double radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
-  (*out) << x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
-      y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
-  if (J) {
+namespace {
+
+// plumb_bob's distortion at (x, y) in scalars, and its Jacobian J = d(x', y')/d(x, y)
+// (row major): the projection runs it for every rim point of every sphere image
+// of a refinement, where Eigen's 2 x 2 and 2 x 3 temporaries went through memory.
+struct PlumbBob {
+  double xd, yd;
+  double J00, J01, J10, J11;
+
+  PlumbBob(const std::array<double, 5>& d, double x, double y, bool jacobian) {
+    const double k1 = d[0], k2 = d[1], p1 = d[2], p2 = d[3], k3 = d[4];
+    const double r2 = x * x + y * y;
+    const double radial = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+    xd = x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x);
+    yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
+    if (!jacobian) return;
     const double dradial_dr2 = k1 + r2 * (2 * k2 + 3 * k3 * r2);
     const double drx = 2 * x * dradial_dr2, dry = 2 * y * dradial_dr2;
-    (*J) << radial + x * drx + 2 * p1 * y + 6 * p2 * x, x * dry + 2 * p1 * x + 2 * p2 * y,
-        y * drx + 2 * p1 * x + 2 * p2 * y, radial + y * dry + 6 * p1 * y + 2 * p2 * x;
+    J00 = radial + x * drx + 2 * p1 * y + 6 * p2 * x;
+    J01 = x * dry + 2 * p1 * x + 2 * p2 * y;
+    J10 = y * drx + 2 * p1 * x + 2 * p2 * y;
+    J11 = radial + y * dry + 6 * p1 * y + 2 * p2 * x;
   }
+};
+
+}  // namespace
+
+// Distortion in normalized coordinates, for plumb_bob: (x, y) -> (x', y') and its Jacobian.
+bool CameraModel::distort(const Eigen::Vector2d& xy, Eigen::Vector2d* out, Eigen::Matrix2d* J) const {
+  const PlumbBob d(info_.distortion, xy.x(), xy.y(), J != nullptr);
+  (*out) << d.xd, d.yd;
+  if (J) (*J) << d.J00, d.J01, d.J10, d.J11;
   return true;
 }
 
 bool CameraModel::project(const Eigen::Vector3d& p, Eigen::Vector2d* px, Eigen::Matrix<double, 2, 3>* J) const {
   const double X = p.x(), Y = p.y(), Z = p.z();
   if (!(Z > 0) || !std::isfinite(X) || !std::isfinite(Y)) return false;
+  if (info_.model == DistortionModel::kPlumbBob) {
+    const double x = X / Z, y = Y / Z;
+    if (!(x * x + y * y < max_r2_)) return false;
+    const PlumbBob d(info_.distortion, x, y, J != nullptr);
+    (*px) << info_.fx * d.xd + info_.cx, info_.fy * d.yd + info_.cy;
+    if (J) {
+      // J_d d(x, y)/dp, d(x, y)/dp = [1/Z 0 -X/Z^2; 0 1/Z -Y/Z^2], each sum as a
+      // 2 x 2 by 2 x 3 product forms it (a zero term adds nothing).
+      const double iz = 1 / Z, ax = -X / (Z * Z), ay = -Y / (Z * Z);
+      (*J) << info_.fx * (d.J00 * iz), info_.fx * (d.J01 * iz), info_.fx * (d.J00 * ax + d.J01 * ay),
+          info_.fy * (d.J10 * iz), info_.fy * (d.J11 * iz), info_.fy * (d.J10 * ax + d.J11 * ay);
+    }
+    return std::isfinite(px->x()) && std::isfinite(px->y());
+  }
   Eigen::Vector2d xd;
   Eigen::Matrix<double, 2, 3> dxd_dp;
-  if (info_.model == DistortionModel::kPlumbBob) {
-    const Eigen::Vector2d xy(X / Z, Y / Z);
-    if (!(xy.squaredNorm() < max_r2_)) return false;
-    Eigen::Matrix2d Jd;
-    distort(xy, &xd, J ? &Jd : nullptr);
-    if (J) {
-      Eigen::Matrix<double, 2, 3> dxy_dp;
-      dxy_dp << 1 / Z, 0, -X / (Z * Z), 0, 1 / Z, -Y / (Z * Z);
-      dxd_dp = Jd * dxy_dp;
-    }
+  const double rho = std::hypot(X, Y);
+  const double theta = std::atan2(rho, Z);
+  if (!(theta < max_theta_)) return false;
+  double td, dtd;
+  fisheye_theta_d(info_.distortion, theta, &td, &dtd);
+  if (rho < 1e-12 * Z) {
+    // On the axis theta_d/rho -> 1/Z: the model is a pinhole to first order.
+    xd << X / Z, Y / Z;
+    if (J) dxd_dp << 1 / Z, 0, -X / (Z * Z), 0, 1 / Z, -Y / (Z * Z);
   } else {
-    const double rho = std::hypot(X, Y);
-    const double theta = std::atan2(rho, Z);
-    if (!(theta < max_theta_)) return false;
-    double td, dtd;
-    fisheye_theta_d(info_.distortion, theta, &td, &dtd);
-    if (rho < 1e-12 * Z) {
-      // On the axis theta_d/rho -> 1/Z: the model is a pinhole to first order.
-      xd << X / Z, Y / Z;
-      if (J) dxd_dp << 1 / Z, 0, -X / (Z * Z), 0, 1 / Z, -Y / (Z * Z);
-    } else {
-      const double ux = X / rho, uy = Y / rho;
-      xd << td * ux, td * uy;
-      if (J) {
-        const double q = rho * rho + Z * Z;
-        const Eigen::RowVector3d dtheta(ux * Z / q, uy * Z / q, -rho / q);
-        const double r3 = rho * rho * rho;
-        dxd_dp.row(0) = dtd * ux * dtheta + td * Eigen::RowVector3d(Y * Y / r3, -X * Y / r3, 0);
-        dxd_dp.row(1) = dtd * uy * dtheta + td * Eigen::RowVector3d(-X * Y / r3, X * X / r3, 0);
-      }
+    const double ux = X / rho, uy = Y / rho;
+    xd << td * ux, td * uy;
+    if (J) {
+      const double q = rho * rho + Z * Z;
+      const Eigen::RowVector3d dtheta(ux * Z / q, uy * Z / q, -rho / q);
+      const double r3 = rho * rho * rho;
+      dxd_dp.row(0) = dtd * ux * dtheta + td * Eigen::RowVector3d(Y * Y / r3, -X * Y / r3, 0);
+      dxd_dp.row(1) = dtd * uy * dtheta + td * Eigen::RowVector3d(-X * Y / r3, X * X / r3, 0);
     }
   }
   (*px) << info_.fx * xd.x() + info_.cx, info_.fy * xd.y() + info_.cy;
@@ -128,6 +147,26 @@ bool CameraModel::project(const Eigen::Vector3d& p, Eigen::Vector2d* px, Eigen::
     J->row(0) = info_.fx * dxd_dp.row(0);
     J->row(1) = info_.fy * dxd_dp.row(1);
   }
+  return std::isfinite(px->x()) && std::isfinite(px->y());
+}
+
+bool CameraModel::project_along(const Eigen::Vector3d& p, const Eigen::Vector3d& dp, Eigen::Vector2d* px,
+                                Eigen::Vector2d* dpx) const {
+  if (info_.model != DistortionModel::kPlumbBob) {
+    Eigen::Matrix<double, 2, 3> J;
+    if (!project(p, px, &J)) return false;
+    *dpx = J * dp;
+    return true;
+  }
+  const double X = p.x(), Y = p.y(), Z = p.z();
+  if (!(Z > 0) || !std::isfinite(X) || !std::isfinite(Y)) return false;
+  const double x = X / Z, y = Y / Z, iz = 1 / Z;  // the pixel exactly as project() gives it
+  if (!(x * x + y * y < max_r2_)) return false;
+  const PlumbBob d(info_.distortion, x, y, true);
+  // d(x, y) = (dX - x dZ, dY - y dZ) / Z, then through J_d.
+  const double dx = (dp.x() - x * dp.z()) * iz, dy = (dp.y() - y * dp.z()) * iz;
+  (*px) << info_.fx * d.xd + info_.cx, info_.fy * d.yd + info_.cy;
+  (*dpx) << info_.fx * (d.J00 * dx + d.J01 * dy), info_.fy * (d.J10 * dx + d.J11 * dy);
   return std::isfinite(px->x()) && std::isfinite(px->y());
 }
 

@@ -49,7 +49,7 @@ bool sphere_image_centroid(const CameraModel& camera, const Eigen::Vector3d& cen
   const Eigen::Vector3d e1 = c.unitOrthogonal(), e2 = c.cross(e1);
   // Green's theorem over the projected rim q(phi), phi in [0, 2 pi):
   //   area = 1/2 \oint (x y' - y x'),  moments = (1/2 \oint x^2 y', -1/2 \oint y^2 x'),
-  // with q' from the projection's Jacobian. The integrands are smooth and periodic,
+  // with q' the projection's derivative along the rim. The integrands are smooth and periodic,
   // so the trapezoid rule converges geometrically in rim_points. Pixels are taken
   // relative to the centre's pixel for precision.
   RimAngles other(0);
@@ -60,11 +60,9 @@ bool sphere_image_centroid(const CameraModel& camera, const Eigen::Vector3d& cen
     const double cos_phi = angles.cos_phi[size_t(k)], sin_phi = angles.sin_phi[size_t(k)];
     const Eigen::Vector3d ray = cos_a * c + sin_a * (cos_phi * e1 + sin_phi * e2);
     const Eigen::Vector3d dray = sin_a * (cos_phi * e2 - sin_phi * e1);
-    Eigen::Vector2d q;
-    Eigen::Matrix<double, 2, 3> J;
-    if (!camera.project(ray, &q, &J)) return false;
+    Eigen::Vector2d q, dq;
+    if (!camera.project_along(ray, dray, &q, &dq)) return false;
     q -= origin;
-    const Eigen::Vector2d dq = J * dray;
     area += q.x() * dq.y() - q.y() * dq.x();
     moment += Eigen::Vector2d(q.x() * q.x() * dq.y(), -q.y() * q.y() * dq.x());
   }

@@ -103,6 +103,38 @@ TEST(CameraModel, EquidistantJacobianMatchesFiniteDifferences) {
   expect_jacobian_matches_finite_differences(fisheye());
 }
 
+// project_along is J dp without J: the same pixel, and the Jacobian's product
+// with the direction to rounding; it refuses exactly where project does.
+void expect_derivative_along_is_jacobian_times_direction(const CameraInfo& info) {
+  const CameraModel cam(info);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int bad = 0, compared = 0;
+  for (const auto& p : random_points(rng, 1.5)) {
+    const Eigen::Vector3d dp(u(rng), u(rng), u(rng));
+    Eigen::Vector2d px, px_along, dpx;
+    Eigen::Matrix<double, 2, 3> J;
+    const bool projects = cam.project(p, &px, &J);
+    ASSERT_EQ(cam.project_along(p, dp, &px_along, &dpx), projects);
+    if (!projects) continue;
+    ++compared;
+    bad += px_along != px;
+    bad += (dpx - J * dp).norm() > 1e-12 * std::max(1.0, J.norm() * dp.norm());
+  }
+  EXPECT_EQ(bad, 0);
+  EXPECT_GT(compared, 300);
+  Eigen::Vector2d px, dpx;
+  EXPECT_FALSE(cam.project_along(Eigen::Vector3d(0.1, 0.1, -1), Eigen::Vector3d(1, 0, 0), &px, &dpx));
+  EXPECT_FALSE(cam.project_along(Eigen::Vector3d(NAN, 0.1, 1), Eigen::Vector3d(1, 0, 0), &px, &dpx));
+}
+
+TEST(CameraModel, PlumbBobDerivativeAlongADirectionIsTheJacobianTimesIt) {
+  expect_derivative_along_is_jacobian_times_direction(pinhole());
+}
+TEST(CameraModel, EquidistantDerivativeAlongADirectionIsTheJacobianTimesIt) {
+  expect_derivative_along_is_jacobian_times_direction(fisheye());
+}
+
 void expect_unproject_inverts_project(const CameraInfo& info, double max_angle) {
   const CameraModel cam(info);
   std::mt19937 rng(9);

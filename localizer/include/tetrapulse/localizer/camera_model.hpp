@@ -52,6 +52,12 @@ class CameraModel {
   bool project(const Eigen::Vector3d& p_C, Eigen::Vector2d* px,
                Eigen::Matrix<double, 2, 3>* J = nullptr) const;
 
+  // As project(), with the pixel's derivative along the camera-frame direction
+  // dp_C: d(u, v)/d(p_C) dp_C (pixels per metre of dp_C), without forming the 2x3
+  // Jacobian (a sphere's image rim is projected with its tangents, many per frame).
+  bool project_along(const Eigen::Vector3d& p_C, const Eigen::Vector3d& dp_C, Eigen::Vector2d* px,
+                     Eigen::Vector2d* dpx) const;
+
   // Unit bearing vector (camera frame) of pixel `px`: the inverse of project
   // up to scale. Returns false when the distortion cannot be inverted there.
   bool unproject(const Eigen::Vector2d& px, Eigen::Vector3d* bearing) const;
