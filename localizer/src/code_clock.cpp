@@ -21,10 +21,24 @@ int64_t CodeClock::bit_number(int64_t t_ns) const {
 }
 
 ExpectedBit expected_bit(const CodeClock& clock, const Code& code, int64_t start_ns, int64_t exposure_ns) {
-  const int64_t first = clock.bit_number(start_ns);
-  const int64_t last = clock.bit_number(start_ns + std::max<int64_t>(exposure_ns, 1) - 1);
+  const int64_t span = std::max<int64_t>(exposure_ns, 1) - 1;
+  int64_t first, last;
+  if (clock.rate == 1.0) {
+    // The bit of the exposure's end from the start's remainder: one division, not
+    // two (code checks ask this of every sample of every track, every frame).
+    const int64_t d = start_ns - clock.origin_ns;
+    first = floor_div(d, clock.bit_period_ns);
+    const int64_t into = d - first * clock.bit_period_ns;  // in [0, period)
+    last = into + span < clock.bit_period_ns ? first : first + floor_div(into + span, clock.bit_period_ns);
+  } else {
+    first = clock.bit_number(start_ns);
+    last = clock.bit_number(start_ns + span);
+  }
   const int64_t L = code.length;
-  const auto index = [L](int64_t n) { return static_cast<uint32_t>(((n % L) + L) % L); };
+  const auto index = [L](int64_t n) {
+    const int64_t m = n % L;
+    return static_cast<uint32_t>(m < 0 ? m + L : m);
+  };
   const bool value = code.bit(index(first));
   // An exposure spanning a whole code cycle or more integrates both values (if the code has both).
   for (int64_t n = first + 1; n <= last && n <= first + L; ++n)

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "tetrapulse/localizer/code_match.hpp"
 
 namespace tetrapulse {
@@ -45,6 +47,36 @@ TEST(ExpectedBit, ExposureAcrossAnEdgeMixesOnlyDifferentBits) {
   EXPECT_EQ(expected_bit(clock, c, 2 * kBit - 1'000'000, 2'000'000), ExpectedBit::kOne);     // 1 -> 1
   EXPECT_EQ(expected_bit(clock, c, 4 * kBit - 1'000'000, 2'000'000), ExpectedBit::kZero);    // 0 -> 0 (wraps)
   EXPECT_EQ(expected_bit(clock, c, 0, 5 * kBit), ExpectedBit::kMixed);                       // a whole cycle
+}
+
+// Against the definition: the bits of every bit number from the exposure's first
+// nanosecond to its last (bit_number of each), for synchronized and drifting
+// clocks, starts before and after the origin, exposures from none to several bits.
+TEST(ExpectedBit, IsTheBitsOfEveryNanosecondsBitNumber) {
+  const Code c = code("0110100111");
+  const int64_t L = c.length;
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int64_t> start(-50 * kBit, 50 * kBit), exposure(-5, 3 * kBit);
+  int mixed = 0, clear = 0;
+  for (const double rate : {1.0, 1 - 150e-6, 1 + 200e-6}) {
+    const CodeClock clock{123'457, kBit, rate};
+    for (int k = 0; k < 20000; ++k) {
+      // Half of them end within a few nanoseconds of a nominal edge (the remainder
+      // arithmetic's boundary cases), the others anywhere.
+      const int64_t before_edge = (k / 2) % 4, edge = 123'457 + (start(rng) / kBit) * kBit;
+      const int64_t t = k % 2 ? start(rng) : edge - before_edge;
+      const int64_t e = k % 2 ? exposure(rng) : before_edge + (k / 8) % 3 - 1 + (k % 16 < 8 ? 0 : kBit);
+      const int64_t first = clock.bit_number(t), last = clock.bit_number(t + std::max<int64_t>(e, 1) - 1);
+      const auto bit = [&](int64_t n) { return c.bit(uint32_t(((n % L) + L) % L)); };
+      bool both = false;
+      for (int64_t n = first + 1; n <= last && n <= first + L; ++n) both |= bit(n) != bit(first);
+      const ExpectedBit want = both ? ExpectedBit::kMixed : bit(first) ? ExpectedBit::kOne : ExpectedBit::kZero;
+      ASSERT_EQ(expected_bit(clock, c, t, e), want) << "rate " << rate << " start " << t << " exposure " << e;
+      (both ? mixed : clear) += 1;
+    }
+  }
+  EXPECT_GT(mixed, 1000);
+  EXPECT_GT(clear, 1000);
 }
 
 TEST(MeanEmission, FollowsTheModulation) {
