@@ -95,13 +95,13 @@ double noise_sigma(const cv::Mat& work, std::vector<int>* values) {
   return 1.4826 * double(*mid) / std::sqrt(2.0);
 }
 
-// The values of ranks k[0..2] among the pixels of `map` (CV_32F, continuous),
+// The values of ranks k[0] <= k[1] <= k[2] among the pixels of `map` (CV_32F, continuous),
 // all of them within [least, greatest] up to rounding: exact, as a sort would
-// give, from a histogram of 4096 bins (the bin is monotonic in the value) and a
+// give, from a histogram of 1024 bins (the bin is monotonic in the value) and a
 // selection among the few values of the bin that holds each rank.
 void order_statistics(const cv::Mat& map, double least, double greatest, const size_t k[3], float value[3],
                       std::vector<uint16_t>* bin_of_pixel, std::vector<float> in_bin[3]) {
-  constexpr int kBins = 4096;
+  constexpr int kBins = 1024;
   const float* v = map.ptr<float>();
   const size_t n = map.total();
   const float lo = float(least);
@@ -114,12 +114,14 @@ void order_statistics(const cv::Mat& map, double least, double greatest, const s
     bins[i] = uint16_t(x);
     ++count[bins[i]];
   }
+  // The ranks ascend: one sweep finds the bins of all three.
   int bin[3];
   size_t below[3];
+  int b = 0;
+  size_t under = 0;
   for (int r = 0; r < 3; ++r) {
-    below[r] = 0;
-    bin[r] = 0;
-    while (below[r] + count[bin[r]] <= k[r]) below[r] += count[bin[r]++];
+    while (under + count[b] <= k[r]) under += count[b++];
+    bin[r] = b, below[r] = under;
     in_bin[r].clear();
   }
   // Which ranks each bin holds, as bits (two ranks may share a bin): one lookup a pixel.
