@@ -61,9 +61,17 @@ int coast_frames_for(const TargetsFile& targets, int64_t frame_period_ns, int64_
 BlobTracker::BlobTracker(BlobTrackerConfig config) : config_(config) {}
 
 const BlobTrack* BlobTracker::find(int64_t id) const {
-  for (const BlobTrack& t : tracks_)
-    if (t.id_ == id) return &t;
-  return nullptr;
+  const size_t i = index_of(id);
+  return i < tracks_.size() ? &tracks_[i] : nullptr;
+}
+
+// Tracks are appended with ever larger ids and removed in order: sorted by id,
+// so a lookup is a binary search (a linear one, asked for every track of a swarm
+// by several stages a frame, grew with the square of the swarm).
+size_t BlobTracker::index_of(int64_t id) const {
+  const auto it = std::lower_bound(tracks_.begin(), tracks_.end(), id,
+                                   [](const BlobTrack& t, int64_t want) { return t.id_ < want; });
+  return it != tracks_.end() && it->id_ == id ? size_t(it - tracks_.begin()) : tracks_.size();
 }
 
 double BlobTracker::gate_radius(const BlobTrack& track) const {
@@ -117,12 +125,12 @@ void BlobTracker::update(const ExposureStamp& frame, const BlobExtraction& extra
 
   // ROI measurements name their track.
   for (const RoiMeasurement& m : extraction.rois) {
-    auto it = std::find_if(tracks_.begin(), tracks_.end(), [&](const BlobTrack& t) { return t.id_ == m.tag; });
-    if (it == tracks_.end() || it->updated_) continue;
+    const size_t i = index_of(m.tag);
+    if (i == tracks_.size() || tracks_[i].updated_) continue;
     if (m.status == RoiStatus::kDetected) {
-      add_detection(&*it, frame, m.blob);
+      add_detection(&tracks_[i], frame, m.blob);
     } else if (m.status == RoiStatus::kAbsent) {
-      add_absence(&*it, frame, m.intensity, m.aperture_saturated);
+      add_absence(&tracks_[i], frame, m.intensity, m.aperture_saturated);
     }
   }
 

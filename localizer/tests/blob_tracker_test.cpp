@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <random>
 
 #include "spot_renderer.hpp"
 #include "tetrapulse/localizer/blob_extractor.hpp"
@@ -169,6 +170,39 @@ TEST(BlobTracker, TakesRoiMeasurementsByTagIncludingAbsentOnes) {
   EXPECT_TRUE(t.detected);
   EXPECT_EQ(t.intensity, 777);
   EXPECT_EQ(tracker.find(other)->missed(), 0);
+}
+
+// find() is a binary search over tracks kept in id order: with tracks born and
+// deleted at random over many frames, the order holds and every id (live, deleted,
+// never given) is found exactly where a scan finds it.
+TEST(BlobTracker, FindsEveryTrackByIdAsTracksComeAndGo) {
+  BlobTrackerConfig config;
+  config.max_coast_frames = 2;
+  BlobTracker tracker(config);
+  std::mt19937 rng(4);
+  std::bernoulli_distribution shows(0.6);
+  int64_t largest = -1;
+  size_t most = 0;
+  for (int k = 0; k < 200; ++k) {
+    // A grid of 40 places 60 px apart, each lit or not this frame: tracks end
+    // after missing three frames and start again with new ids.
+    BlobExtraction e;
+    for (int i = 0; i < 40; ++i)
+      if (shows(rng)) e.blobs.push_back(blob_at(Eigen::Vector2d(30 + 60 * (i % 8), 30 + 60 * (i / 8))));
+    tracker.update(stamp(k), e);
+    const auto& tracks = tracker.tracks();
+    most = std::max(most, tracks.size());
+    for (size_t i = 1; i < tracks.size(); ++i) ASSERT_LT(tracks[i - 1].id(), tracks[i].id()) << "frame " << k;
+    for (const BlobTrack& t : tracks) largest = std::max(largest, t.id());
+    for (int64_t id = -2; id <= largest + 2; ++id) {
+      const BlobTrack* scanned = nullptr;
+      for (const BlobTrack& t : tracks)
+        if (t.id() == id) scanned = &t;
+      ASSERT_EQ(tracker.find(id), scanned) << "frame " << k << " id " << id;
+    }
+  }
+  EXPECT_GT(largest, 100);  // many tracks came and went
+  EXPECT_GE(most, 30u);
 }
 
 TEST(BlobTracker, HistoryKeepsTheNewest64Samples) {

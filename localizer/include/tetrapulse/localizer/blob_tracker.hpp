@@ -138,6 +138,7 @@ class BlobTracker {
   void update(const ExposureStamp& frame, const BlobExtraction& extraction, const std::vector<TrackGate>& gates = {});
 
   const std::vector<BlobTrack>& tracks() const { return tracks_; }
+  // The track with this id, nullptr when there is none (tracks() is in id order).
   const BlobTrack* find(int64_t id) const;
   // After update(): the track that took extraction.blobs[index] (an existing
   // track, or one it started), -1 when none did or the index is out of range.
@@ -151,6 +152,8 @@ class BlobTracker {
 
  private:
   double gate_radius(const BlobTrack& track) const;
+  // Index in tracks_ of the track with this id, tracks_.size() when there is none.
+  size_t index_of(int64_t id) const;
   void add_detection(BlobTrack* track, const ExposureStamp& frame, const Blob& blob);
   void add_absence(BlobTrack* track, const ExposureStamp& frame, std::optional<double> intensity, bool saturated = false);
 
