@@ -160,6 +160,12 @@ FrameMarkers markers_of(const PoseFrame& f, size_t t, const std::array<int, 4>& 
       out.unconfirmed.push_back(SeenMarker{out.merged[i].first, out.merged[i].second.centroid});
       out.shared.push_back(out.merged[i].first);
     }
+  // The frame's other lights are asked only where a missing marker's code lights
+  // it (whether a root puts it on a blob): gathered for every target, they cost
+  // each pose a pass over every track of the swarm.
+  const bool lit_missing = std::any_of(out.evidence.missing.begin(), out.evidence.missing.end(),
+                                       [](const MissingMarker& m) { return m.light == MarkerLight::kLit; });
+  if (!lit_missing) return out;
   for (const BlobTrack& track : f.tracker.tracks()) {
     const TrackSample& newest = track.history().newest();
     if (newest.frame != f.stamp.frame || !newest.detected) continue;

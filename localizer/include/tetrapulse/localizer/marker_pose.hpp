@@ -98,7 +98,9 @@ struct MergedMarkers {
 struct MarkerEvidence {
   std::vector<HintedMarker> hints;     // markers dark now whose tracks predict their pixels
   std::vector<MissingMarker> missing;  // markers not seen, with what their codes say
-  std::vector<Eigen::Vector2d> lights; // centroids of this frame's blobs that are none of the seen markers
+  // Centroids of this frame's blobs that are none of the seen markers: read only
+  // when a missing marker is kLit (a caller may leave it empty otherwise).
+  std::vector<Eigen::Vector2d> lights;
   // Pairs of markers merged into one blob: they join the refinement of a pose the
   // seen markers give; with two seen markers, they make a pose refined from the
   // prediction (status kThreeMarkers).
