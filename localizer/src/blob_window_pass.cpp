@@ -113,7 +113,9 @@ void WindowPass::prune(int expected) {
 
 void WindowPass::split_by_prediction(const Window& w, const std::vector<Eigen::Vector2d>& centres) {
   if (centres.size() < 2) return;
-  held_.assign(regions_.size(), {});
+  // Cleared, not assigned anew: each region's list keeps its memory between windows.
+  if (held_.size() < regions_.size()) held_.resize(regions_.size());
+  for (size_t k = 0; k < regions_.size(); ++k) held_[k].clear();
   const int width = grower_.width();
   for (const Eigen::Vector2d& c : centres) {
     const int x = static_cast<int>(std::lround(c.x())), y = static_cast<int>(std::lround(c.y()));
