@@ -28,6 +28,12 @@ struct FrameMarkers {
   MarkerEvidence evidence;  // hints of confirmed markers dark now, missing markers, lights
 };
 
+// Whether a marker not seen is lit now by its code (the fourth blob a pose expects).
+bool lit_missing(const MarkerEvidence& evidence) {
+  return std::any_of(evidence.missing.begin(), evidence.missing.end(),
+                     [](const MissingMarker& m) { return m.light == MarkerLight::kLit; });
+}
+
 // What the marker's code says of it in this exposure.
 MarkerLight expected_light(const PoseFrame& f, const TrackedTarget& tt, const Marker& marker, int frequency) {
   if (f.targets.modulation.kind == ModulationKind::kConstant || !marker.code) return MarkerLight::kLit;
@@ -163,9 +169,7 @@ FrameMarkers markers_of(const PoseFrame& f, size_t t, const std::array<int, 4>& 
   // The frame's other lights are asked only where a missing marker's code lights
   // it (whether a root puts it on a blob): gathered for every target, they cost
   // each pose a pass over every track of the swarm.
-  const bool lit_missing = std::any_of(out.evidence.missing.begin(), out.evidence.missing.end(),
-                                       [](const MissingMarker& m) { return m.light == MarkerLight::kLit; });
-  if (!lit_missing) return out;
+  if (!lit_missing(out.evidence)) return out;
   for (const BlobTrack& track : f.tracker.tracks()) {
     const TrackSample& newest = track.history().newest();
     if (newest.frame != f.stamp.frame || !newest.detected) continue;
@@ -271,10 +275,7 @@ std::optional<TargetPose> solve_target_pose(const PoseFrame& f, size_t t, const 
   const double since = f.frame_period_ns > 0 ? double(mid - tt.last_pose_ns) / double(f.frame_period_ns) : 1.0;
   // Whether a fourth blob of this target should be in view: a marker on a track not
   // confirmed yet, or one whose code lights it now.
-  const bool fourth_expected =
-      !markers.unconfirmed.empty() ||
-      std::any_of(markers.evidence.missing.begin(), markers.evidence.missing.end(),
-                  [](const MissingMarker& m) { return m.light == MarkerLight::kLit; });
+  const bool fourth_expected = !markers.unconfirmed.empty() || lit_missing(markers.evidence);
   auto solved = solve(f, target, tt, pose_options, &markers);
   if (rig_rms && solved && solved->outlier >= 0) solved.reset();
   // A pose of fewer than four confirmed markers rests on the prediction: it must
