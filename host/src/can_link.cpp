@@ -65,13 +65,16 @@ HostResult<std::unique_ptr<CanLink>> CanLink::open(const std::string& interface_
     e.device = name;
     return tl::unexpected(e);
   }
-  // Transfer-ids from a random start: see CanTransferSender (a second `tetrapulse status`
-  // within a second of the first would otherwise look like its repeat to the board).
-  return std::make_unique<CanLink>(std::move(*port), local_node, peer_node, static_cast<uint8_t>(std::random_device{}()));
+  // Transfer-id and seq from a random start (see the constructor): a repeat then needs both
+  // to match, 1 in 32 × 256 for two runs within the transfer timeout.
+  const uint32_t start = std::random_device{}();
+  return std::make_unique<CanLink>(std::move(*port), local_node, peer_node, static_cast<uint8_t>(start),
+                                   static_cast<uint8_t>(start >> 8));
 }
 
-CanLink::CanLink(std::unique_ptr<CanPort> port, uint8_t local_node, uint8_t peer_node, uint8_t first_transfer_id)
-    : Link(can_link_name(port->interface_name(), peer_node)),
+CanLink::CanLink(std::unique_ptr<CanPort> port, uint8_t local_node, uint8_t peer_node, uint8_t first_transfer_id,
+                 uint8_t first_seq)
+    : Link(can_link_name(port->interface_name(), peer_node), first_seq),
       port_(std::move(port)),
       local_(local_node),
       peer_(peer_node),

@@ -163,6 +163,26 @@ TEST(CanLink, BusOffIsAnErrorUntilTheControllerRestarts) {
   EXPECT_EQ(link.error_frames(), 2u);
 }
 
+// Two `tetrapulse status` runs in a row are two links, each with its first transfer-id and
+// seq. A board takes a single frame identical to its session's previous one (within the 1 s
+// transfer timeout) for a controller's repeat and ignores it: with equal transfer-ids (1 in
+// 32 at random) only a different seq gets the second run its answer.
+TEST(CanLink, ASecondRunWithTheFirstsTransferIdIsAnsweredWhenItsSeqDiffers) {
+  FakeCanBus bus;
+  testing::ResponderIdentity id;
+  id.node_id = 3;
+  CanBoardResponder responder(id);
+  bus.attach([&](const protocol::CanFrame& f, int64_t t) { return responder.on_frame(f, t); });
+  const auto run = [&](uint8_t transfer_id, uint8_t seq) {
+    Board board(std::make_unique<CanLink>(bus.open(), 0, 3, transfer_id, seq), BoardTimeouts{std::chrono::milliseconds(50)});
+    return board.status().has_value();
+  };
+  ASSERT_TRUE(run(17, 1));
+  EXPECT_FALSE(run(17, 1)) << "the board no longer ignores a repeated frame: this test no longer shows why seqs differ";
+  EXPECT_TRUE(run(17, 2));
+  EXPECT_TRUE(run(17, 200));
+}
+
 TEST(CanLink, IgnoresOtherNodesAndCountsForeignIdentifiers) {
   FakeCanBus bus;
   CanLink link(bus.open(), 0, 3);

@@ -36,8 +36,12 @@ class CanLink : public Link {
   static HostResult<std::unique_ptr<CanLink>> open(const std::string& interface_name, uint8_t peer_node,
                                                    uint8_t local_node = protocol::kCanHostNode);
   // Over any port (tests use a fake); the port should already filter for `local_node`.
-  // Transfer-ids start at `first_transfer_id` (open() picks it at random).
-  CanLink(std::unique_ptr<CanPort> port, uint8_t local_node, uint8_t peer_node, uint8_t first_transfer_id = 0);
+  // Transfer-ids start at `first_transfer_id`, seqs at `first_seq` (open() picks both at
+  // random: a board ignores a single-frame request identical in tail byte and payload to
+  // the previous one within its transfer timeout, SPEC.md §4.4, so two `tetrapulse status`
+  // runs in a row must differ in one of them; random transfer-ids alone collide 1 in 32).
+  CanLink(std::unique_ptr<CanPort> port, uint8_t local_node, uint8_t peer_node, uint8_t first_transfer_id = 0,
+          uint8_t first_seq = 1);
 
   uint8_t local_node() const { return local_; }
   uint8_t peer_node() const { return peer_; }

@@ -46,7 +46,8 @@ class Link {
   static constexpr std::chrono::milliseconds kDefaultTimeout{1000};  // SPEC.md §5.5
   static constexpr size_t kMaxQueued = 64;
 
-  explicit Link(std::string name) : name_(std::move(name)) {}
+  // `first_seq`: the seq of the first request (any value, SPEC.md §2.2; see CanLink::open).
+  explicit Link(std::string name, uint8_t first_seq = 1) : name_(std::move(name)), next_seq_(first_seq) {}
   virtual ~Link() = default;
   Link(const Link&) = delete;
   Link& operator=(const Link&) = delete;
@@ -93,7 +94,7 @@ class Link {
   void queue(ReceivedMessage message);
 
   std::string name_;
-  uint8_t next_seq_ = 1;
+  uint8_t next_seq_;
   std::deque<ReceivedMessage> queued_;
 };
 
