@@ -23,8 +23,10 @@ tetrapulse record --camera "v4l2:$cap" --pixel-format Mono8 --camera-info $work/
 rec_pid=$!
 # The recorder streams (vivid's test pattern, until the output starts) before anything is sent.
 wait_for 60 sh -c "ls $work/rec/frames 2>/dev/null | grep -q png" || { cat $work/record.log; fail "record wrote no frame within 60 s"; }
-timeout 120 vivid_loop_probe send --output "$out" --dataset $work/sim --count $count --hold 12 --lead 20 --trail 30 \
-  --sent $work/sent || { kill -INT $rec_pid; fail "streaming to $out failed"; }
+# --await: each frame stays on show until the recording holds it (the recorder may
+# fall behind for seconds on the emulated machine; its queue then drops what it cannot write).
+timeout 150 vivid_loop_probe send --output "$out" --dataset $work/sim --count $count --hold 12 --lead 20 --trail 30 \
+  --sent $work/sent --await $work/rec || { kill -INT $rec_pid; fail "streaming to $out failed"; }
 kill -INT $rec_pid
 rc=0
 wait $rec_pid || rc=$?

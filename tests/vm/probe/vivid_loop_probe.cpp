@@ -7,11 +7,16 @@
 //     GREY, without OSD text (the loop's conditions on the capture side; done
 //     before the recorder streams, as vivid refuses them while it does).
 //   vivid_loop_probe send --output DEV --dataset DIR --count N --hold K --lead L
-//                         --trail T --sent OUT
+//                         --trail T --sent OUT [--await REC]
 //     Sets HDMI output 000-0 to the same, then streams frame 0 for L output frames,
 //     frames 1..N for K output frames each and frame N+1 for T: the first N+2
 //     images of the rig dataset DIR, 640 columns cut from their middle, each with
 //     its number as a barcode in row 0. Writes what it sent as OUT/sent-NNN.png.
+//     With --await, a frame is not followed by the next (nor the last ended) until
+//     the recording REC being written holds it: vivid shows the last buffer queued
+//     for as long as it takes. (Without it, a recorder slowed by the emulated
+//     machine for longer than K output frames lost a frame now and then, and the
+//     test with it, though the recorder only drops what it cannot keep up with.)
 //   vivid_loop_probe check --sent OUT --count N --recording DIR
 //     Every frame of the recording between the first and the last looped one must
 //     be one of the sent frames, byte for byte; the frames seen, once repeats are
@@ -28,8 +33,16 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <deque>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <optional>
+#include <set>
+#include <thread>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -100,6 +113,38 @@ void set_grey_format(int fd, const std::string& device, v4l2_buf_type type) {
         std::to_string(f.fmt.pix.width) + "x" + std::to_string(f.fmt.pix.height));
   }
 }
+
+// The frames (by barcode) that a recorder has written so far to REC/frames/*.png. A
+// file it is still writing (no IEND chunk at its end yet) is read again at the next look.
+class RecordingWatch {
+ public:
+  explicit RecordingWatch(std::string dir) : frames_(std::move(dir) + "/frames") {}
+
+  bool holds(int index) {
+    if (seen_.count(index)) return true;
+    std::error_code ec;
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(frames_, ec))
+      if (e.path().extension() == ".png" && !read_.count(e.path().string())) names.push_back(e.path().string());
+    std::sort(names.begin(), names.end());
+    for (const std::string& name : names) {
+      std::ifstream in(name, std::ios::binary);
+      const std::vector<uchar> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      static constexpr uchar kIend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xAE, 0x42, 0x60, 0x82};
+      if (bytes.size() < sizeof kIend || !std::equal(std::begin(kIend), std::end(kIend), bytes.end() - sizeof kIend)) continue;
+      const cv::Mat image = cv::imdecode(bytes, cv::IMREAD_GRAYSCALE);
+      if (image.empty() || image.cols < kBarBits * kBarPixels) continue;
+      read_.insert(name);
+      seen_.insert(read_barcode(image));
+    }
+    return seen_.count(index) > 0;
+  }
+
+ private:
+  std::string frames_;
+  std::set<std::string> read_;
+  std::set<int> seen_;
+};
 
 struct OutBuffer {
   uint8_t* data = nullptr;
@@ -198,9 +243,35 @@ int send(const std::map<std::string, std::string>& a) {
   must(out, VIDIOC_STREAMON, &type, out_dev, "VIDIOC_STREAMON");
   const int64_t start = probe::monotonic_ns();
   uint64_t shown = 0;
+  std::optional<RecordingWatch> watch;
+  if (a.count("await")) watch.emplace(a.at("await"));
+  constexpr int64_t kAwaitNs = 60'000'000'000;
+  int64_t awaiting_since = 0;
+  // Waits (with the frame on show) until the recording holds frame `index`; false
+  // while it does not yet.
+  auto recorded = [&](int index) {
+    if (!watch || watch->holds(index)) {
+      awaiting_since = 0;
+      return true;
+    }
+    const int64_t now = probe::monotonic_ns();
+    if (awaiting_since == 0) awaiting_since = now;
+    if (now - awaiting_since > kAwaitNs) die(cv::format("vivid_loop_probe: the recording holds no frame %d after 60 s", index));
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    return false;
+  };
   // vivid's output keeps its last buffer (it hands one back only when another is
   // pending, for the loop's sake): done when only the trailer's last one is left.
   while (next < schedule.size() || queued > 1) {
+    // The next buffer starts another frame: only once the recording holds this one
+    // (meanwhile the buffers queued drain to the last, which vivid keeps showing).
+    if (queued <= 1 && next > 0 && next < schedule.size() && schedule[next] != schedule[next - 1]) {
+      if (!recorded(schedule[next - 1])) continue;
+      queue(returned.front());
+      returned.pop_front();
+      ++queued;
+      continue;
+    }
     pollfd p{out, POLLOUT, 0};
     if (poll(&p, 1, 5000) <= 0) die(out_dev + ": no output buffer came back within 5 s");
     v4l2_buffer b{};
@@ -213,12 +284,14 @@ int send(const std::map<std::string, std::string>& a) {
     --queued;
     ++shown;
     returned.push_back(b.index);
-    if (returned.size() > kSpare && next < schedule.size()) {
+    const bool new_frame = next > 0 && next < schedule.size() && schedule[next] != schedule[next - 1];
+    if (returned.size() > kSpare && next < schedule.size() && (!new_frame || recorded(schedule[next - 1]))) {
       queue(returned.front());
       returned.pop_front();
       ++queued;
     }
   }
+  while (!recorded(count + 1)) continue;  // the trailer too, before the output stops
   must(out, VIDIOC_STREAMOFF, &type, out_dev, "VIDIOC_STREAMOFF");
   std::printf("vivid_loop_probe: %llu output frames in %.2f s (frames 0..%d, %d each, %d lead, %d trail)\n",
               static_cast<unsigned long long>(shown), static_cast<double>(probe::monotonic_ns() - start) / 1e9, count + 1,
