@@ -260,12 +260,14 @@ int send(const std::map<std::string, std::string>& a) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     return false;
   };
+  // Whether the next buffer starts another frame: it may go only once the recording
+  // holds this one (meanwhile the buffers queued drain to the last, which vivid keeps
+  // showing).
+  auto starts_a_frame = [&] { return next > 0 && next < schedule.size() && schedule[next] != schedule[next - 1]; };
   // vivid's output keeps its last buffer (it hands one back only when another is
   // pending, for the loop's sake): done when only the trailer's last one is left.
   while (next < schedule.size() || queued > 1) {
-    // The next buffer starts another frame: only once the recording holds this one
-    // (meanwhile the buffers queued drain to the last, which vivid keeps showing).
-    if (queued <= 1 && next > 0 && next < schedule.size() && schedule[next] != schedule[next - 1]) {
+    if (queued <= 1 && starts_a_frame()) {
       if (!recorded(schedule[next - 1])) continue;
       queue(returned.front());
       returned.pop_front();
@@ -284,8 +286,7 @@ int send(const std::map<std::string, std::string>& a) {
     --queued;
     ++shown;
     returned.push_back(b.index);
-    const bool new_frame = next > 0 && next < schedule.size() && schedule[next] != schedule[next - 1];
-    if (returned.size() > kSpare && next < schedule.size() && (!new_frame || recorded(schedule[next - 1]))) {
+    if (returned.size() > kSpare && next < schedule.size() && (!starts_a_frame() || recorded(schedule[next - 1]))) {
       queue(returned.front());
       returned.pop_front();
       ++queued;
