@@ -13,7 +13,9 @@ namespace {
 
 // Newton steps on a monic polynomial (coefficients c[0..n-1] of x^(n-1)..x^0
 // below the leading 1); a step is kept only when it lowers |p(x)|. A kept step
-// below 1e-10 |x| ends the polish: the next would be below rounding.
+// below 1e-10 |x| ends the polish: the next would be below rounding. No step is
+// taken when it would be below 1e-15 |x| (|p| <= 1e-15 |x p'|, compared without the
+// division): most of Ferrari's roots of the P3P quartic already are.
 template <int N>
 double polish(const std::array<double, N>& c, double x) {
   auto eval = [&](double v, double* dv) {
@@ -27,6 +29,7 @@ double polish(const std::array<double, N>& c, double x) {
   };
   double d;
   double f = eval(x, &d);
+  if (std::abs(f) <= 1e-15 * std::abs(x * d)) return x;
   for (int it = 0; it < 2 && f != 0.0; ++it) {
     if (!(std::abs(d) > 0.0)) break;
     const double step = f / d;
