@@ -44,6 +44,21 @@ std::vector<CanVector> can_vectors() {
 
 Bytes data_of(const protocol::CanFrame& f) { return Bytes(f.data, f.data + f.size); }
 
+// A bus with one board on it, node 3, answering through the protocol's CAN transfers.
+struct BusWithBoard {
+  FakeCanBus bus;
+  CanBoardResponder responder{identity()};
+
+  BusWithBoard() {
+    bus.attach([this](const protocol::CanFrame& f, int64_t t) { return responder.on_frame(f, t); });
+  }
+  static testing::ResponderIdentity identity() {
+    testing::ResponderIdentity id;
+    id.node_id = 3;
+    return id;
+  }
+};
+
 TEST(CanLink, ReassemblesEveryGoldenTransfer) {
   const auto vectors = can_vectors();
   ASSERT_GE(vectors.size(), 8u);
@@ -90,11 +105,8 @@ TEST(CanLink, SendsEveryGoldenTransferFrameForFrame) {
 }
 
 TEST(CanLink, ConfiguresABoardThroughMultiFrameTransfers) {
-  FakeCanBus bus;
-  testing::ResponderIdentity id;
-  id.node_id = 3;
-  CanBoardResponder responder(id);
-  bus.attach([&](const protocol::CanFrame& f, int64_t t) { return responder.on_frame(f, t); });
+  BusWithBoard b;
+  FakeCanBus& bus = b.bus;
   const protocol::CanNodeFilters host = protocol::can_node_filters(0);
   SocketCanOptions options;
   options.filters = {host.addressed, host.broadcast};
@@ -137,11 +149,8 @@ TEST(CanLink, BroadcastGetInfoIsAnsweredByEveryBoard) {
 }
 
 TEST(CanLink, BusOffIsAnErrorUntilTheControllerRestarts) {
-  FakeCanBus bus;
-  testing::ResponderIdentity id;
-  id.node_id = 3;
-  CanBoardResponder responder(id);
-  bus.attach([&](const protocol::CanFrame& f, int64_t t) { return responder.on_frame(f, t); });
+  BusWithBoard b;
+  FakeCanBus& bus = b.bus;
   Board board(std::make_unique<CanLink>(bus.open(), 0, 3));
   auto& link = static_cast<CanLink&>(board.link());
   bus.raise_error(CAN_ERR_BUSOFF);
@@ -169,11 +178,8 @@ TEST(CanLink, BusOffIsAnErrorUntilTheControllerRestarts) {
 // transfer timeout) for a controller's repeat and ignores it: with equal transfer-ids (1 in
 // 32 at random) only a different seq gets the second run its answer.
 TEST(CanLink, ASecondRunWithTheFirstsTransferIdIsAnsweredWhenItsSeqDiffers) {
-  FakeCanBus bus;
-  testing::ResponderIdentity id;
-  id.node_id = 3;
-  CanBoardResponder responder(id);
-  bus.attach([&](const protocol::CanFrame& f, int64_t t) { return responder.on_frame(f, t); });
+  BusWithBoard b;
+  FakeCanBus& bus = b.bus;
   const auto run = [&](uint8_t transfer_id, uint8_t seq) {
     Board board(std::make_unique<CanLink>(bus.open(), 0, 3, transfer_id, seq), BoardTimeouts{std::chrono::milliseconds(50)});
     return board.status().has_value();
