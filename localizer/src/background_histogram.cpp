@@ -24,6 +24,89 @@ int bit_length(unsigned v) {
   return n;
 }
 
+#if defined(__SSE2__)
+// A whole image's background, flattened, lies in a few grey levels (99.5 % of the
+// pipeline benchmark's pixels in 8 consecutive ones), and counting it one increment
+// at a time was a fifth of a full frame. Pixels within a band of 8 levels are counted
+// 16 at a time into per-lane byte counters (a compare and a subtract per level); the
+// rest, markers mostly, one by one into the partial histograms. Exact either way: the
+// band only decides which pixels take the fast path.
+class BandCounter {
+ public:
+  // Takes the 8 consecutive levels holding the most of the partial histograms' pixels
+  // so far (the first counted row), when they hold at least 7/8 of the `counted`.
+  void choose(const uint32_t* h, int parts, int counted) {
+    uint32_t c[256];
+    for (int b = 0; b < 256; ++b) {
+      c[b] = 0;
+      for (int k = 0; k < parts; ++k) c[b] += h[256 * k + b];
+    }
+    uint32_t in = 0, best = 0;
+    int base = 0;
+    for (int b = 0; b < 256; ++b) {
+      in += c[b] - (b >= kLevels ? c[b - kLevels] : 0);
+      if (b >= kLevels - 1 && in > best) best = in, base = b - (kLevels - 1);
+    }
+    on_ = counted > 0 && uint64_t(best) * 8 >= uint64_t(counted) * 7;
+    base_level_ = base;
+    base_ = _mm_set1_epi8(char(base));
+    for (int k = 0; k < kLevels; ++k) totals_[k] = 0;
+  }
+  bool on() const { return on_; }
+
+  // Counts p[0, x) for the largest x <= width that is a multiple of 16; returns x.
+  int count_row(const uint8_t* p, int width, uint32_t* h) {
+    const __m128i top = _mm_set1_epi8(kLevels - 1), zero = _mm_setzero_si128();
+    // Counters and levels in registers (unrolled: as a loop GCC kept them in memory).
+    __m128i a[kLevels], level[kLevels];
+#pragma GCC unroll 8
+    for (int k = 0; k < kLevels; ++k) a[k] = zero, level[k] = _mm_set1_epi8(char(k));
+    int vectors = 0, x = 0;
+    for (; x + 16 <= width; x += 16) {
+      const __m128i d = _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + x)), base_);
+#pragma GCC unroll 8
+      for (int k = 0; k < kLevels; ++k) a[k] = _mm_sub_epi8(a[k], _mm_cmpeq_epi8(d, level[k]));
+      // Lanes outside the band (d > 7 as unsigned bytes), one by one; four partial
+      // histograms by lane, as a saturated marker repeats one value.
+      unsigned out = ~unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, top), zero))) & 0xFFFFu;
+      while (out != 0) {
+        const int i = __builtin_ctz(out);
+        ++h[256 * (i & 3) + p[x + i]];
+        out &= out - 1;
+      }
+      if (++vectors == 255) add(a), vectors = 0;  // a byte counter holds 255
+    }
+    add(a);
+    return x;
+  }
+
+  // Adds the band's counts to partial histogram 0.
+  void add_to(uint32_t* h) const {
+    if (!on_) return;
+    for (int k = 0; k < kLevels; ++k) h[base_level_ + k] += uint32_t(totals_[k]);
+  }
+
+ private:
+  static constexpr int kLevels = 8;
+
+  // Moves the byte counters' sums to the totals.
+  void add(__m128i (&a)[kLevels]) {
+    const __m128i zero = _mm_setzero_si128();
+#pragma GCC unroll 8
+    for (int k = 0; k < kLevels; ++k) {
+      const __m128i s = _mm_sad_epu8(a[k], zero);  // the two halves' byte sums
+      totals_[k] += uint64_t(_mm_cvtsi128_si64(s)) + uint64_t(_mm_cvtsi128_si64(_mm_unpackhi_epi64(s, s)));
+      a[k] = zero;
+    }
+  }
+
+  bool on_ = false;
+  int base_level_ = 0;
+  __m128i base_ = _mm_setzero_si128();
+  uint64_t totals_[kLevels] = {};
+};
+#endif
+
 }  // namespace
 
 void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
@@ -48,9 +131,15 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
     // partial counts each increment still waited on the one four pixels before (a
     // fifth of a full frame's wall clock); eight leave twice the room.
     const int parts = large ? kPartials : 4;
+#if defined(__SSE2__)
+    BandCounter band;
+#endif
     for (int y = window.y; y < window.y + window.height; y += step) {
       const uint8_t* p = image.ptr<uint8_t>(y) + window.x;
       int x = 0;
+#if defined(__SSE2__)
+      if (band.on()) x = band.count_row(p, window.width, h);
+#endif
       if (large) {
         for (; x + 8 <= window.width; x += 8) {
           ++h[p[x]];
@@ -70,7 +159,13 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
         ++h[768 + p[x + 3]];
       }
       for (; x < window.width; ++x) ++h[p[x]];
+#if defined(__SSE2__)
+      if (large && y == window.y) band.choose(h, parts, window.width);
+#endif
     }
+#if defined(__SSE2__)
+    band.add_to(h);
+#endif
     uint32_t* bins = bins_.data();
     int b = 0, first = 256, last = -1;  // occupied bins lie in [first, last + 3]
 #if defined(__SSE2__)

@@ -17,7 +17,8 @@ class BackgroundHistogram {
  public:
   // Counts the values of `image` (CV_8UC1 or CV_16UC1) inside `window`, which
   // must lie in the image; of 8-bit windows of 65536 pixels or more, every other
-  // row. 16-bit values share bins (at most 4096) by a shift.
+  // row (with SSE2, the 8 levels that hold most of the first row 16 pixels at a
+  // time). 16-bit values share bins (at most 4096) by a shift.
   void count(const cv::Mat& image, cv::Rect window);
 
   // Gaussian fitted to the background peak: starts at the histogram's mode with
@@ -38,6 +39,8 @@ class BackgroundHistogram {
   double otsu() const;
 
   int bin_width() const { return 1 << shift_; }
+  // Pixels counted in `bin` (0 <= bin < bins in use: 256 for 8-bit data).
+  uint32_t bin_count(int bin) const { return bins_[size_t(bin)]; }
   uint32_t total() const { return total_; }  // pixels counted
 
  private:

@@ -1,7 +1,8 @@
 // A large 8-bit window (65536 pixels or more) counts every other row into eight
-// partial histograms; a smaller one counts every row into four. Both must give the
+// partial histograms, and the pixels within the 8 levels that hold most of its first
+// row 16 at a time; a smaller one counts every row into four. Both must give the
 // histogram of the pixels they read: a large window and the small image of just
-// the rows it counts agree on every statistic.
+// the rows it counts agree on every statistic, and every bin equals its count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -89,6 +90,51 @@ TEST(BackgroundHistogram, ALargeWindowCountsItsEveryOtherRowExactly) {
     EXPECT_EQ(large.otsu(), small.otsu()) << width;
     const BackgroundFit again = large.fit_background(255);
     EXPECT_EQ(again.sigma, b.sigma) << width;
+  }
+}
+
+// Every bin of a large window against a count of its every other row, one pixel at a
+// time: a narrow background (counted 16 pixels at a time) with values at random just
+// outside the band and anywhere, runs of 255 (a saturated marker), widths that leave
+// pixels beyond whole vectors, a row of more than 255 vectors (byte counters that
+// must be emptied within it, also where a lane holds one level all along), a first
+// row unlike the rest, and a wide background (too wide for the band: every pixel one
+// by one).
+TEST(BackgroundHistogram, ALargeWindowsEveryBinEqualsItsCount) {
+  std::mt19937 rng(17);
+  struct Case {
+    int width, height;
+    double mean, sigma;
+    bool odd_first_row;
+  };
+  for (const Case c : {Case{752, 480, 7, 1.2, false}, Case{301, 440, 60, 1.0, false}, Case{4100, 40, 3, 0.8, false},
+                       Case{4100, 40, 200, 1.5, false}, Case{520, 260, 30, 1.0, true}, Case{333, 400, 90, 14, false},
+                       Case{17, 4000, 12, 1.0, false}, Case{4200, 32, 9, 0.01, false}}) {
+    cv::Mat image(c.height, c.width, CV_8U);
+    std::normal_distribution<double> background(c.mean, c.sigma);
+    std::uniform_int_distribution<int> kind(0, 199), any(0, 255), edge(0, 1);
+    for (int y = 0; y < image.rows; ++y) {
+      for (int x = 0; x < image.cols; ++x) {
+        int v = std::clamp(int(std::lround(background(rng))), 0, 255);
+        const int k = kind(rng);
+        if (k == 0) v = any(rng);
+        if (k == 1) v = std::clamp(int(std::lround(c.mean)) + (edge(rng) ? 5 : -5), 0, 255);
+        image.at<uint8_t>(y, x) = uint8_t(v);
+      }
+      if (y % 37 == 0) image.row(y).colRange(c.width / 3, c.width / 3 + std::min(c.width / 3, 40)).setTo(255);
+    }
+    if (c.odd_first_row) image.row(0).setTo(250);
+    std::vector<uint32_t> expected(256, 0);
+    for (int y = 0; y < image.rows; y += 2)
+      for (int x = 0; x < image.cols; ++x) ++expected[image.at<uint8_t>(y, x)];
+    ASSERT_GE(image.total(), 65536u);
+
+    BackgroundHistogram h;
+    for (int run = 0; run < 2; ++run) {  // nothing carried from the first run
+      h.count(image, cv::Rect(0, 0, image.cols, image.rows));
+      for (int b = 0; b < 256; ++b)
+        ASSERT_EQ(h.bin_count(b), expected[size_t(b)]) << c.width << " x " << c.height << ", bin " << b;
+    }
   }
 }
 
