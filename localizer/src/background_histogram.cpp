@@ -61,22 +61,40 @@ class BandCounter {
     __m128i a[kLevels], level[kLevels];
 #pragma GCC unroll 8
     for (int k = 0; k < kLevels; ++k) a[k] = zero, level[k] = _mm_set1_epi8(char(k));
-    int vectors = 0, x = 0;
-    for (; x + 16 <= width; x += 16) {
-      const __m128i d = _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + x)), base_);
+    int x = 0;
+    // At most 255 vectors between emptyings (a byte counter holds 255). The vectors
+    // with lanes outside the band (d > 7 as unsigned bytes) are listed and those
+    // lanes counted after the chunk, so that the vector loop has no branch on data.
+    int listed[255];
+    while (x + 16 <= width) {
+      const int end = std::min(width - 15, x + 255 * 16);
+      int n = 0;
+      for (; x < end; x += 16) {
+        const __m128i d = _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + x)), base_);
 #pragma GCC unroll 8
-      for (int k = 0; k < kLevels; ++k) a[k] = _mm_sub_epi8(a[k], _mm_cmpeq_epi8(d, level[k]));
-      // Lanes outside the band (d > 7 as unsigned bytes), one by one; four partial
-      // histograms by lane, as a saturated marker repeats one value.
-      unsigned out = ~unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, top), zero))) & 0xFFFFu;
-      while (out != 0) {
-        const int i = __builtin_ctz(out);
-        ++h[256 * (i & 3) + p[x + i]];
-        out &= out - 1;
+        for (int k = 0; k < kLevels; ++k) a[k] = _mm_sub_epi8(a[k], _mm_cmpeq_epi8(d, level[k]));
+        listed[n] = x;
+        n += _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, top), zero)) != 0xFFFF;
       }
-      if (++vectors == 255) add(a), vectors = 0;  // a byte counter holds 255
+#pragma GCC unroll 8
+      for (int k = 0; k < kLevels; ++k) {
+        const __m128i s = _mm_sad_epu8(a[k], zero);  // the two halves' byte sums
+        totals_[k] += uint64_t(_mm_cvtsi128_si64(s)) + uint64_t(_mm_cvtsi128_si64(_mm_unpackhi_epi64(s, s)));
+        a[k] = zero;
+      }
+      // The listed vectors' lanes outside the band, one by one; four partial
+      // histograms by lane, as a saturated marker repeats one value.
+      for (int j = 0; j < n; ++j) {
+        const uint8_t* v = p + listed[j];
+        const __m128i d = _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(v)), base_);
+        unsigned out = ~unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, top), zero))) & 0xFFFFu;
+        while (out != 0) {
+          const int i = __builtin_ctz(out);
+          ++h[256 * (i & 3) + v[i]];
+          out &= out - 1;
+        }
+      }
     }
-    add(a);
     return x;
   }
 
@@ -88,17 +106,6 @@ class BandCounter {
 
  private:
   static constexpr int kLevels = 8;
-
-  // Moves the byte counters' sums to the totals.
-  void add(__m128i (&a)[kLevels]) {
-    const __m128i zero = _mm_setzero_si128();
-#pragma GCC unroll 8
-    for (int k = 0; k < kLevels; ++k) {
-      const __m128i s = _mm_sad_epu8(a[k], zero);  // the two halves' byte sums
-      totals_[k] += uint64_t(_mm_cvtsi128_si64(s)) + uint64_t(_mm_cvtsi128_si64(_mm_unpackhi_epi64(s, s)));
-      a[k] = zero;
-    }
-  }
 
   bool on_ = false;
   int base_level_ = 0;
