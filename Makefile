@@ -4,6 +4,10 @@
 
 BUILD := build
 CTEST_JOBS ?= $(shell nproc)
+# The default preset's tests spend much of their time waiting on VM guests and on rig
+# time: one job more than there are cores keeps the cores busy (on 2 cores its 75 tests
+# took 242 s with 2 jobs, 170 s with 3 and 186 s with 4).
+CTEST_JOBS_DEFAULT ?= $(shell echo $$(( $$(nproc) + 1 )))
 
 setup:
 	@scripts/setup
@@ -44,10 +48,10 @@ asan: setup $(BUILD)/asan/build.ninja
 	@cmake --build --preset asan
 
 test: build firmware
-	@ctest --preset default -j $(CTEST_JOBS)
+	@ctest --preset default -j $(CTEST_JOBS_DEFAULT)
 
 test-check: build-check firmware
-	@ctest --preset default -j $(CTEST_JOBS)
+	@ctest --preset default -j $(CTEST_JOBS_DEFAULT)
 
 test-asan: asan
 	@ctest --preset asan -j $(CTEST_JOBS)
