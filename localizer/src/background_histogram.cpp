@@ -24,7 +24,12 @@ int bit_length(unsigned v) {
   return n;
 }
 
-#if defined(__SSE2__)
+// The band count needs SSE2 and 64-bit lane extraction (x86-64).
+#if defined(__SSE2__) && defined(__x86_64__)
+#define TETRAPULSE_BAND_COUNT 1
+#endif
+
+#if defined(TETRAPULSE_BAND_COUNT)
 // A whole image's background, flattened, lies in a few grey levels (99.5 % of the
 // pipeline benchmark's pixels in 8 consecutive ones), and counting it one increment
 // at a time was a fifth of a full frame. Pixels within a band of 8 levels are counted
@@ -57,7 +62,8 @@ class BandCounter {
   // Counts p[0, x) for the largest x <= width that is a multiple of 16; returns x.
   int count_row(const uint8_t* p, int width, uint32_t* h) {
     const __m128i top = _mm_set1_epi8(kLevels - 1), zero = _mm_setzero_si128();
-    // Counters and levels in registers (unrolled: as a loop GCC kept them in memory).
+    // Counters and levels as locals, the loops over them unrolled (members indexed in a
+    // loop stayed in memory).
     __m128i a[kLevels], level[kLevels];
 #pragma GCC unroll 8
     for (int k = 0; k < kLevels; ++k) a[k] = zero, level[k] = _mm_set1_epi8(char(k));
@@ -138,13 +144,13 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
     // partial counts each increment still waited on the one four pixels before (a
     // fifth of a full frame's wall clock); eight leave twice the room.
     const int parts = large ? kPartials : 4;
-#if defined(__SSE2__)
+#if defined(TETRAPULSE_BAND_COUNT)
     BandCounter band;
 #endif
     for (int y = window.y; y < window.y + window.height; y += step) {
       const uint8_t* p = image.ptr<uint8_t>(y) + window.x;
       int x = 0;
-#if defined(__SSE2__)
+#if defined(TETRAPULSE_BAND_COUNT)
       if (band.on()) x = band.count_row(p, window.width, h);
 #endif
       if (large) {
@@ -166,11 +172,11 @@ void BackgroundHistogram::count(const cv::Mat& image, cv::Rect window) {
         ++h[768 + p[x + 3]];
       }
       for (; x < window.width; ++x) ++h[p[x]];
-#if defined(__SSE2__)
+#if defined(TETRAPULSE_BAND_COUNT)
       if (large && y == window.y) band.choose(h, parts, window.width);
 #endif
     }
-#if defined(__SSE2__)
+#if defined(TETRAPULSE_BAND_COUNT)
     band.add_to(h);
 #endif
     uint32_t* bins = bins_.data();
