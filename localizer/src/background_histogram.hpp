@@ -17,7 +17,7 @@ class BackgroundHistogram {
  public:
   // Counts the values of `image` (CV_8UC1 or CV_16UC1) inside `window`, which
   // must lie in the image; of 8-bit windows of 65536 pixels or more, every other
-  // row (with SSE2, the 8 levels that hold most of the first row 16 pixels at a
+  // row (on x86-64, the 8 levels that hold most of the first row 16 pixels at a
   // time). 16-bit values share bins (at most 4096) by a shift.
   void count(const cv::Mat& image, cv::Rect window);
 
