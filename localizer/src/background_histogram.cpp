@@ -61,7 +61,7 @@ class BandCounter {
 
   // Counts p[0, x) for the largest x <= width that is a multiple of 16; returns x.
   int count_row(const uint8_t* p, int width, uint32_t* h) {
-    const __m128i top = _mm_set1_epi8(kLevels - 1), zero = _mm_setzero_si128();
+    const __m128i zero = _mm_setzero_si128();
     // Counters and levels as locals, the loops over them unrolled (members indexed in a
     // loop stayed in memory).
     __m128i a[kLevels], level[kLevels];
@@ -76,11 +76,11 @@ class BandCounter {
       const int end = std::min(width - 15, x + 255 * 16);
       int n = 0;
       for (; x < end; x += 16) {
-        const __m128i d = _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + x)), base_);
+        const __m128i d = offsets(p + x);
 #pragma GCC unroll 8
         for (int k = 0; k < kLevels; ++k) a[k] = _mm_sub_epi8(a[k], _mm_cmpeq_epi8(d, level[k]));
         listed[n] = x;
-        n += _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, top), zero)) != 0xFFFF;
+        n += outside(d) != 0;
       }
 #pragma GCC unroll 8
       for (int k = 0; k < kLevels; ++k) {
@@ -92,9 +92,7 @@ class BandCounter {
       // histograms by lane, as a saturated marker repeats one value.
       for (int j = 0; j < n; ++j) {
         const uint8_t* v = p + listed[j];
-        const __m128i d = _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(v)), base_);
-        unsigned out = ~unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu8(d, top), zero))) & 0xFFFFu;
-        while (out != 0) {
+        for (unsigned out = outside(offsets(v)); out != 0;) {
           const int i = __builtin_ctz(out);
           ++h[256 * (i & 3) + v[i]];
           out &= out - 1;
@@ -112,6 +110,16 @@ class BandCounter {
 
  private:
   static constexpr int kLevels = 8;
+
+  // 16 pixels' levels above the band's first (a pixel in the band: 0..7).
+  __m128i offsets(const uint8_t* v) const {
+    return _mm_sub_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(v)), base_);
+  }
+  // The lanes whose offset lies outside the band (above 7 as an unsigned byte), as bits.
+  static unsigned outside(__m128i d) {
+    const __m128i in = _mm_cmpeq_epi8(_mm_subs_epu8(d, _mm_set1_epi8(kLevels - 1)), _mm_setzero_si128());
+    return ~unsigned(_mm_movemask_epi8(in)) & 0xFFFFu;
+  }
 
   bool on_ = false;
   int base_level_ = 0;
